@@ -1,0 +1,201 @@
+// criticality-bench: runs the estimator on the paper's scenes and reports the time per estimate
+// (median and minimum over --repeat runs, after --warmup runs). No SUMO dependency: it must run
+// on a bare GPU machine. With --json the last line of standard output is one JSON object.
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <boost/program_options.hpp>
+
+#include "bench/paper_scenes.h"
+#include "criticality/errors.h"
+#include "criticality/estimator.h"
+
+namespace po = boost::program_options;
+using namespace criticality;
+
+namespace {
+
+struct Options {
+  std::string scene{"S1"};
+  std::string backend{"cpu"};
+  int profiles{6};
+  int threads{0};
+  int repeat{5};
+  int warmup{1};
+  bool json{false};
+  bool report{false};
+};
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::string KindName(ObjectKind k) {
+  switch (k) {
+    case ObjectKind::kEgo: return "ego";
+    case ObjectKind::kVehicle: return "vehicle";
+    case ObjectKind::kPedestrian: return "pedestrian";
+  }
+  return "?";
+}
+
+std::string LaneName(int lane) {
+  switch (lane) {
+    case -1: return "right lane";
+    case 0: return "ego lane";
+    case 1: return "left lane";
+  }
+  return "no ego lane";
+}
+
+void PrintReport(const Scene& scene, const Params& params, const Result& r) {
+  std::printf("\nScene: ego '%s' at %.1f m/s with %zu vehicles and %zu pedestrians\n",
+              scene.ego.id.c_str(), scene.ego.state.speed_mps, scene.vehicles.size(),
+              scene.pedestrians.size());
+  std::printf("Collision probability p_cra = %.4f (%.1f %%)\n", r.p_collision,
+              100.0 * r.p_collision);
+  std::printf("\nContribution per object (shares of p_cra):\n");
+  for (const ObjectResult& o : r.objects) {
+    std::printf("  %-14s %-10s %-16s %4d hypotheses  %.4f\n", o.id.c_str(),
+                KindName(o.kind).c_str(), LaneName(o.lane).c_str(), o.trajectories,
+                o.contribution);
+  }
+  // First-collision time: where the mass lies.
+  double cum = 0.0, t_first = -1.0, t_median = -1.0;
+  for (size_t n = 0; n < r.first_collision_pmf.size(); ++n) {
+    const double t = (n + 1) * params.step_s;
+    if (t_first < 0.0 && r.first_collision_pmf[n] > 0.0) t_first = t;
+    cum += r.first_collision_pmf[n];
+    if (t_median < 0.0 && r.p_collision > 0.0 && cum >= 0.5 * r.p_collision) t_median = t;
+  }
+  if (t_first >= 0.0) {
+    std::printf("\nFirst collision: earliest possible at %.2f s, half of p_cra by %.2f s\n",
+                t_first, t_median);
+    std::printf("  p(first collision by t):");
+    cum = 0.0;
+    size_t next = 0;
+    const double marks[] = {0.5, 1.0, 1.5, 2.0};
+    for (size_t n = 0; n < r.first_collision_pmf.size(); ++n) {
+      cum += r.first_collision_pmf[n];
+      const double t = (n + 1) * params.step_s;
+      while (next < 4 && t >= marks[next] - 1e-9) {
+        std::printf("  %.1fs: %.4f", marks[next], cum);
+        ++next;
+      }
+    }
+    std::printf("\n");
+  } else {
+    std::printf("\nNo hypothesis combination collides within %.1f s.\n", params.horizon_s);
+  }
+  std::printf("\nEscape routes: %d of %d ego hypotheses are collision-free. Most probable:\n",
+              r.collision_free_ego_trajectories, r.counts.ego_trajectories);
+  const size_t show = std::min<size_t>(5, r.escape_routes.size());
+  for (size_t k = 0; k < show; ++k) {
+    const EscapeRoute& e = r.escape_routes[k];
+    std::ostringstream sections;
+    for (size_t s = 0; s < e.sections.size(); ++s) sections << (s ? "," : "") << e.sections[s];
+    std::printf("  #%zu  hypothesis %4d  slip %+.3f (about %+.1f m/s^2)  lateral samples [%s]  p = %.5f\n",
+                k + 1, e.ego_trajectory, e.profile_slip, e.profile_accel_mps2,
+                sections.str().c_str(), e.probability);
+  }
+  std::printf("  (lateral samples count from the right: 0-1 right lane, 2-4 ego lane, 5-6 left lane)\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options opt;
+  po::options_description desc(
+      "criticality-bench: time the multi-hypothesis criticality estimator on the paper's scenes\n"
+      "(S1 = ego + 3 other vehicles, S2 = ego + 10, straight 3-lane road, 2 s horizon, 20 ms\n"
+      "steps, 343 ego paths, 7 paths per other vehicle).\n\nOptions");
+  desc.add_options()
+      ("help,h", "show this help and exit")
+      ("scene", po::value(&opt.scene)->default_value(opt.scene), "S1 or S2")
+      ("profiles", po::value(&opt.profiles)->default_value(opt.profiles),
+       "acceleration/slip profiles per object (paper: 6 or 5)")
+      ("backend", po::value(&opt.backend)->default_value(opt.backend),
+       "reference (plain literal algorithm, one thread) or cpu (fast path)")
+      ("threads", po::value(&opt.threads)->default_value(opt.threads),
+       "worker threads for the cpu backend (0 = all hardware threads)")
+      ("repeat", po::value(&opt.repeat)->default_value(opt.repeat), "timed estimates")
+      ("warmup", po::value(&opt.warmup)->default_value(opt.warmup), "untimed estimates first")
+      ("json", po::bool_switch(&opt.json), "print one JSON object as the last line of stdout")
+      ("report", po::bool_switch(&opt.report),
+       "print a readable summary of the result (per-object shares, collision times, escape routes)");
+  try {
+    po::variables_map vm;
+    po::store(po::parse_command_line(argc, argv, desc), vm);
+    if (vm.count("help")) {
+      std::cout << desc << "\nExample: criticality-bench --scene S2 --backend reference --repeat 3\n";
+      return 0;
+    }
+    po::notify(vm);
+    if (opt.repeat < 1) throw InputError("--repeat = " + std::to_string(opt.repeat) + ": must be >= 1");
+    if (opt.warmup < 0) throw InputError("--warmup = " + std::to_string(opt.warmup) + ": must be >= 0");
+
+    Params params;
+    params.profiles = opt.profiles;
+    EstimatorOptions eopt;
+    eopt.backend = ParseBackend(opt.backend);
+    eopt.threads = opt.threads;
+    const Scene scene = bench::PaperScene(opt.scene);
+    Estimator estimator(params, eopt);
+
+    for (int k = 0; k < opt.warmup; ++k) estimator.Estimate(scene);
+    std::vector<double> total, traj, coll, risk;
+    Result last;
+    for (int k = 0; k < opt.repeat; ++k) {
+      last = estimator.Estimate(scene);
+      total.push_back(last.times.total_ms);
+      traj.push_back(last.times.trajectory_ms);
+      coll.push_back(last.times.collision_ms);
+      risk.push_back(last.times.risk_ms);
+    }
+    const double median = Median(total);
+    const double min = *std::min_element(total.begin(), total.end());
+    const WorkCounts& c = last.counts;
+    std::printf("scene %s, backend %s (%d threads), %d profiles\n", opt.scene.c_str(),
+                opt.backend.c_str(), estimator.threads(), opt.profiles);
+    std::printf("  trajectories: %d ego, %d CO; %d steps; %llu pose combinations\n",
+                c.ego_trajectories, c.co_trajectories, c.time_steps,
+                static_cast<unsigned long long>(c.pose_combinations));
+    std::printf("  p_collision %.6f\n", last.p_collision);
+    std::printf("  time per estimate over %d runs: median %.3f ms, min %.3f ms "
+                "(median trajectories %.3f, collisions %.3f, risk %.3f ms)\n",
+                opt.repeat, median, min, Median(traj), Median(coll), Median(risk));
+    if (opt.report) PrintReport(scene, params, last);
+    if (opt.json) {
+      std::printf(
+          "{\"scene\":\"%s\",\"backend\":\"%s\",\"threads\":%d,\"profiles\":%d,"
+          "\"pose_combinations\":%llu,\"ego_trajectories\":%d,\"co_trajectories\":%d,"
+          "\"time_steps\":%d,\"p_collision\":%.17g,\"median_ms\":%.6f,\"min_ms\":%.6f,"
+          "\"median_trajectory_ms\":%.6f,\"median_collision_ms\":%.6f,\"median_risk_ms\":%.6f,"
+          "\"repeat\":%d}\n",
+          opt.scene.c_str(), opt.backend.c_str(), estimator.threads(), opt.profiles,
+          static_cast<unsigned long long>(c.pose_combinations), c.ego_trajectories,
+          c.co_trajectories, c.time_steps, last.p_collision, median, min, Median(traj),
+          Median(coll), Median(risk), opt.repeat);
+    }
+    return 0;
+  } catch (const po::error& e) {
+    std::cerr << "criticality-bench: error: " << e.what() << " (see --help)\n";
+    return 2;
+  } catch (const InputError& e) {
+    std::cerr << "criticality-bench: error: " << e.what() << "\n";
+    return 2;
+  } catch (const WorkloadError& e) {
+    std::cerr << "criticality-bench: error: " << e.what() << "\n";
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "criticality-bench: internal error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,71 @@
+#pragma once
+// Everything needed to simulate any hypothesis of one object, as plain data with fixed-size
+// arrays (so that it copies to a GPU as is). A hypothesis = (profile, path); its index among
+// the object's trajectories is profile * n_paths + path (paper Sec. IV-B-4).
+#include "core/geometry.h"
+#include "core/hd.h"
+#include "core/lane_fit.h"
+#include "core/vehicle_params.h"
+
+namespace criticality::core {
+
+constexpr int kMaxSampleInstants = 4;
+constexpr int kMaxLateralSamples = 16;
+constexpr int kMaxProfiles = 32;
+
+enum class MotionModelKind : int {
+  kTwoTrack = 0,    ///< the ego
+  kOneTrack = 1,    ///< other vehicles
+  kPedestrian = 2,  ///< kinematic, no lanes
+};
+
+struct HypothesisSet {
+  MotionModelKind model{MotionModelKind::kOneTrack};
+  /** The object's local frame (its current pose) in the scene frame; simulation runs in the
+   *  local frame, where its lanes are given, and poses are stored in the scene frame. */
+  Pose2 X_WL;
+  double v0{0.0};
+  double beta0{0.0};
+  double yaw_rate0{0.0};
+  double accel0{0.0};
+  VehicleParams vehicle;
+  double seam_speed{2.0};  ///< below: kinematic single-track model
+  double half_length{2.25};
+  double half_width{0.9};
+
+  // Longitudinal: profile k targets profile_target[k] (acceleration, slip for the two-track
+  // model), starting from profile_start, after `latency`, at `rate` per second.
+  int n_profiles{0};
+  double profile_target[kMaxProfiles]{};
+  double profile_start{0.0};
+  double latency{0.0};
+  double rate{0.0};
+
+  // Lateral: section[k][l] is the path section through lateral sample l (right to left) that
+  // is tracked until instant_time[k].
+  int n_instants{0};
+  double instant_time[kMaxSampleInstants]{};
+  int n_lateral{0};
+  Parabola section[kMaxSampleInstants][kMaxLateralSamples]{};
+  /** Ego: every combination of sections (n_lateral^n_instants paths, instant 0 the most
+   *  significant digit, so paths that share their first sections are adjacent). Others: path l
+   *  keeps sample l at every instant (n_lateral paths). */
+  bool combine_sections{false};
+  int n_paths{0};
+
+  // Pedestrians: the path index selects heading[path] (scene frame); speed limit.
+  double heading[kMaxLateralSamples]{};
+  double max_speed{0.0};
+
+  CRIT_HD int Trajectories() const { return n_profiles * n_paths; }
+};
+
+/** Lateral sample index that `path` uses at sample instant `instant`. */
+CRIT_HD int SectionOfPath(const HypothesisSet& h, int path, int instant) {
+  if (!h.combine_sections) return path;
+  int divisor = 1;
+  for (int k = instant + 1; k < h.n_instants; ++k) divisor *= h.n_lateral;
+  return (path / divisor) % h.n_lateral;
+}
+
+}  // namespace criticality::core

@@ -1,0 +1,39 @@
+#pragma once
+// One-track (single-track, "bicycle") model of the other vehicles, paper Sec. IV-B-1b
+// (Schramm et al. 2014), in the paper's matrix form:
+//   dbeta = -(cf+cr)/(m v) beta + ((cr lr - cf lf)/(m v^2) - 1) dpsi + cf/(m v) delta
+//   ddpsi = (cr lr - cf lf)/Iz beta - (cf lf^2 + cr lr^2)/(Iz v) dpsi + cf lf/Iz delta
+// It is singular at v = 0; callers switch to the kinematic model below SeamSpeed().
+#include <cmath>
+
+#include "core/hd.h"
+#include "core/state.h"
+#include "core/vehicle_params.h"
+
+namespace criticality::core {
+
+CRIT_HD StateDerivative OneTrackDerivative(const VehicleParams& p, const MotionState& s,
+                                           double steer, double v_dot) {
+  const double m = p.mass_kg, iz = p.yaw_inertia_kgm2, v = s.v;
+  const double cf = p.cf_npr, cr = p.cr_npr, lf = p.lf_m, lr = p.lr_m;
+  StateDerivative d;
+  d.v_dot = v_dot;
+  d.beta_dot = -(cf + cr) / (m * v) * s.beta + ((cr * lr - cf * lf) / (m * v * v) - 1.0) * s.yaw_rate +
+               cf / (m * v) * steer;
+  d.yaw_acc = (cr * lr - cf * lf) / iz * s.beta - (cf * lf * lf + cr * lr * lr) / (iz * v) * s.yaw_rate +
+              cf * lf / iz * steer;
+  return d;
+}
+
+/** Speed below which the dynamic models are replaced by the kinematic one: the configured
+ *  kinematic_below_mps, raised when needed so that explicit Euler with step tau stays stable
+ *  (the fastest eigenvalues of the one-track model are about -(cf+cr)/(m v) and
+ *  -(cf lf^2 + cr lr^2)/(Iz v); Euler needs |lambda| tau <= 2, we keep
+ *  |lambda| tau <= 1 / stability_factor). */
+CRIT_HD double SeamSpeed(const VehicleParams& p, double tau, double stability_factor) {
+  const double k1 = (p.cf_npr + p.cr_npr) / p.mass_kg;
+  const double k2 = (p.cf_npr * p.lf_m * p.lf_m + p.cr_npr * p.lr_m * p.lr_m) / p.yaw_inertia_kgm2;
+  return std::fmax(p.kinematic_below_mps, stability_factor * tau * std::fmax(k1, k2));
+}
+
+}  // namespace criticality::core

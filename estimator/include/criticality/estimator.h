@@ -1,0 +1,61 @@
+#pragma once
+/** @file The estimator: one object, several backends behind the same interface. */
+#include <memory>
+#include <string>
+
+#include "criticality/params.h"
+#include "criticality/result.h"
+#include "criticality/scene.h"
+
+namespace criticality {
+
+/** Which implementation runs the four modules. */
+enum class Backend {
+  kReference,  ///< the plain literal algorithm: one thread, every pair at every step, no pruning.
+               ///< The judge of every faster path.
+  kCpu,        ///< CPU fast path: threads, bounding-circle rejection, early exit per pair.
+};
+
+/** Parses "reference" / "cpu"; throws InputError naming the accepted values otherwise. */
+Backend ParseBackend(const std::string& name);
+std::string BackendName(Backend backend);
+
+/** Execution settings (not part of the algorithm). */
+struct EstimatorOptions {
+  Backend backend{Backend::kCpu};
+  /** Worker threads for the cpu backend; 0 = hardware concurrency. */
+  int threads{0};
+  /** Keep Result::first_collision_step (2 bytes per ego x CO trajectory pair). */
+  bool keep_pair_matrix{false};
+};
+
+class EstimatorBackend;
+
+/** Estimates the criticality of scenes. Reuses its buffers across calls; not thread-safe (use
+ *  one Estimator per thread). */
+class Estimator {
+ public:
+  /** @throws InputError when params are invalid. */
+  explicit Estimator(const Params& params, const EstimatorOptions& options = {});
+  ~Estimator();
+  Estimator(const Estimator&) = delete;
+  Estimator& operator=(const Estimator&) = delete;
+
+  /** Runs street data processing, trajectory generation, collision recognition and risk
+   *  assessment on one scene.
+   *  @throws InputError when the scene is invalid (the message names the field and value).
+   *  @throws WorkloadError when the work would exceed Params::max_memory_bytes. */
+  Result Estimate(const Scene& scene);
+
+  const Params& params() const { return params_; }
+  const EstimatorOptions& options() const { return options_; }
+  /** Threads the backend actually uses (options().threads resolved). */
+  int threads() const;
+
+ private:
+  Params params_;
+  EstimatorOptions options_;
+  std::unique_ptr<EstimatorBackend> backend_;
+};
+
+}  // namespace criticality

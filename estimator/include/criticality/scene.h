@@ -1,0 +1,101 @@
+#pragma once
+/** @file
+ * The input of one estimate: plain data, no SUMO types.
+ *
+ * Frames: every object state is given in one common planar frame W (the "scene frame": SUMO's
+ * network coordinates, or any frame the caller likes), x and y in metres, yaw in radians
+ * counter-clockwise from +x (math convention, NOT SUMO's navigation angle). Positions are the
+ * object's centre of gravity, which we take as the centre of its rectangle.
+ *
+ * Lanes are given the way a camera delivers them (paper Sec. IV-A): each lane divider as three
+ * points (closest, middle, farthest) in the LOCAL frame of the object that sees them: origin at
+ * its centre of gravity, +x forward along its heading, +y to its left.
+ */
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace criticality {
+
+/** A point in some planar frame, metres. */
+struct Point2 {
+  double x{0.0};
+  double y{0.0};
+};
+
+/** One lane divider: three points (closest, middle, farthest) in the observer's local frame.
+ *  Their x values (forward distances) must differ by at least 1 cm. */
+struct LaneDivider {
+  std::array<Point2, 3> points{};
+};
+
+/** One lane, delimited by two dividers as seen by the observer. */
+struct Lane {
+  LaneDivider left;   ///< the divider with the larger y (left of the lane, in the lane's direction)
+  LaneDivider right;  ///< the divider with the smaller y
+  /** True when traffic on this lane runs against the observer's direction of travel. */
+  bool counter_traffic{false};
+};
+
+/** Up to three lanes around an observer (paper Sec. IV-A): its own, the immediate left and the
+ *  immediate right. A missing own lane is replaced by a virtual lane (Params::virtual_lane_width_m);
+ *  missing neighbours are simply not used. */
+struct LaneSet {
+  std::optional<Lane> own;
+  std::optional<Lane> left;
+  std::optional<Lane> right;
+};
+
+/** Kinematic state of an object in the scene frame W. */
+struct ObjectState {
+  double x_m{0.0};                ///< centre of gravity
+  double y_m{0.0};
+  double yaw_rad{0.0};            ///< heading, counter-clockwise from +x
+  double speed_mps{0.0};          ///< speed over ground, >= 0
+  double accel_mps2{0.0};         ///< current longitudinal acceleration
+  double yaw_rate_radps{0.0};     ///< current yaw rate
+  double sideslip_rad{0.0};       ///< current sideslip angle beta (0 when unknown)
+};
+
+/** The vehicle whose criticality is estimated. Simulated with the two-track model. */
+struct Ego {
+  std::string id{"ego"};
+  ObjectState state;
+  double length_m{4.5};
+  double width_m{1.8};
+  std::optional<double> height_m;  ///< when known, the vehicle class uses 8 classes instead of 6
+  LaneSet lanes;                   ///< in the ego's local frame
+};
+
+/** Another vehicle (a collision object, CO). Simulated with the one-track model. */
+struct Vehicle {
+  std::string id;
+  ObjectState state;
+  double length_m{4.5};
+  double width_m{1.8};
+  std::optional<double> height_m;
+  /** The vehicle's own lanes in ITS local frame, when known (e.g. crossing traffic at a junction
+   *  follows its own road). When absent, the vehicle is associated by its centre of gravity to
+   *  one of the ego's lanes and uses the ego's lanes seen from its own frame (paper Sec. IV-A);
+   *  outside every ego lane it gets a virtual lane along its heading. */
+  std::optional<LaneSet> lanes;
+};
+
+/** A pedestrian (kinematic model, no lanes). SUMO's default person is 0.215 m x 0.478 m; a
+ *  0.5 m square is the default footprint here. */
+struct Pedestrian {
+  std::string id;
+  ObjectState state;
+  double length_m{0.5};
+  double width_m{0.5};
+};
+
+/** Everything one estimate needs. */
+struct Scene {
+  Ego ego;
+  std::vector<Vehicle> vehicles;
+  std::vector<Pedestrian> pedestrians;
+};
+
+}  // namespace criticality

@@ -1,0 +1,154 @@
+#include "src/street_data.h"
+
+#include <array>
+#include <cmath>
+#include <sstream>
+
+#include "criticality/errors.h"
+
+namespace criticality::internal {
+namespace {
+
+constexpr double kMinPointSpacing = 0.01;  // m, along x in the local frame
+
+core::Parabola FitDivider(const LaneDivider& d, const std::string& where) {
+  double x[3], y[3];
+  for (int i = 0; i < 3; ++i) {
+    x[i] = d.points[i].x;
+    y[i] = d.points[i].y;
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) {
+      std::ostringstream msg;
+      msg << where << ".points[" << i << "] = (" << x[i] << ", " << y[i]
+          << "): coordinates must be finite";
+      throw InputError(msg.str());
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i + 1; j < 3; ++j) {
+      if (std::fabs(x[i] - x[j]) < kMinPointSpacing) {
+        std::ostringstream msg;
+        msg << where << ": points " << i << " and " << j << " have forward distances x = " << x[i]
+            << " and " << x[j] << " m; the three points need distinct x (at least "
+            << kMinPointSpacing << " m apart) in the observer's frame";
+        throw InputError(msg.str());
+      }
+    }
+  }
+  core::Parabola p;
+  if (!core::FitParabola(x, y, &p)) {
+    throw InputError(where + ": the three points do not define a lane divider y(x)");
+  }
+  return p;
+}
+
+std::optional<FittedLane> FitLane(const std::optional<Lane>& lane, const std::string& where) {
+  if (!lane) return std::nullopt;
+  FittedLane f;
+  f.left = FitDivider(lane->left, where + ".left");
+  f.right = FitDivider(lane->right, where + ".right");
+  f.counter_traffic = lane->counter_traffic;
+  const double width = f.left.Eval(0.0) - f.right.Eval(0.0);
+  if (!(width > 0.0)) {
+    std::ostringstream msg;
+    msg << where << ": width at the observer = " << width
+        << " m; the left divider must lie left of (greater y than) the right divider";
+    throw InputError(msg.str());
+  }
+  return f;
+}
+
+LaneDivider DividerFrom(const core::Parabola& p, const std::array<double, 3>& xs) {
+  LaneDivider d;
+  for (int i = 0; i < 3; ++i) d.points[i] = Point2{xs[i], p.Eval(xs[i])};
+  return d;
+}
+
+bool Contains(const FittedLane& lane, double x, double y) {
+  return y >= lane.right.Eval(x) && y <= lane.left.Eval(x);
+}
+
+LaneDivider ToFrame(const LaneDivider& d, const core::Pose2& X_EV) {
+  LaneDivider out;
+  for (int i = 0; i < 3; ++i) {
+    core::WorldToLocal(X_EV, d.points[i].x, d.points[i].y, &out.points[i].x, &out.points[i].y);
+  }
+  return out;
+}
+
+// A lane re-expressed in another frame; nullopt when it is not a function y(x) there.
+std::optional<Lane> LaneInFrame(const Lane& lane, const core::Pose2& X_EV, bool reversed,
+                                bool counter) {
+  Lane out;
+  out.left = ToFrame(reversed ? lane.right : lane.left, X_EV);
+  out.right = ToFrame(reversed ? lane.left : lane.right, X_EV);
+  out.counter_traffic = counter;
+  try {
+    const FittedLanes probe = FitLanes(LaneSet{out, std::nullopt, std::nullopt}, "lane");
+    (void)probe;
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+  return out;
+}
+
+}  // namespace
+
+Lane VirtualLane(const ObjectState& state, double width) {
+  double curvature = state.speed_mps > 0.5 ? state.yaw_rate_radps / state.speed_mps : 0.0;
+  curvature = std::fmax(-0.2, std::fmin(0.2, curvature));
+  const std::array<double, 3> xs{0.0, 25.0, 50.0};
+  Lane lane;
+  lane.left = DividerFrom(core::Parabola{0.5 * curvature, 0.0, 0.5 * width}, xs);
+  lane.right = DividerFrom(core::Parabola{0.5 * curvature, 0.0, -0.5 * width}, xs);
+  return lane;
+}
+
+FittedLanes FitLanes(const LaneSet& lanes, const std::string& where) {
+  FittedLanes f;
+  f.own = FitLane(lanes.own, where + ".own");
+  f.left = FitLane(lanes.left, where + ".left");
+  f.right = FitLane(lanes.right, where + ".right");
+  return f;
+}
+
+LaneSet CompleteEgoLanes(const Ego& ego, const Params& params) {
+  LaneSet lanes = ego.lanes;
+  if (!lanes.own) lanes.own = VirtualLane(ego.state, params.virtual_lane_width_m);
+  return lanes;
+}
+
+LaneIndex AssociateLane(const FittedLanes& ego_lanes, double x_E, double y_E) {
+  if (ego_lanes.own && Contains(*ego_lanes.own, x_E, y_E)) return LaneIndex::kOwn;
+  if (ego_lanes.left && Contains(*ego_lanes.left, x_E, y_E)) return LaneIndex::kLeft;
+  if (ego_lanes.right && Contains(*ego_lanes.right, x_E, y_E)) return LaneIndex::kRight;
+  return LaneIndex::kNone;
+}
+
+LaneSet EgoLanesSeenBy(const LaneSet& ego_lanes, const core::Pose2& X_EV, LaneIndex own) {
+  LaneSet out;
+  auto lane_at = [&](int index) -> const std::optional<Lane>& {
+    static const std::optional<Lane> kNoLane;
+    if (index == -1) return ego_lanes.right;
+    if (index == 0) return ego_lanes.own;
+    if (index == 1) return ego_lanes.left;
+    return kNoLane;
+  };
+  const int m = static_cast<int>(own);
+  const std::optional<Lane>& own_lane = lane_at(m);
+  if (own == LaneIndex::kNone || !own_lane) return out;
+  // Driving against the ego's direction: the ego's left is this vehicle's right.
+  const bool reversed = std::cos(X_EV.yaw) < 0.0;
+  const bool own_counter = own_lane->counter_traffic;
+  out.own = LaneInFrame(*own_lane, X_EV, reversed, false);
+  if (!out.own) return LaneSet{};
+  for (int side : {-1, 1}) {
+    const std::optional<Lane>& lane = lane_at(m + side);
+    if (!lane) continue;
+    auto seen = LaneInFrame(*lane, X_EV, reversed, lane->counter_traffic != own_counter);
+    const bool is_left = (side == 1) != reversed;
+    (is_left ? out.left : out.right) = seen;
+  }
+  return out;
+}
+
+}  // namespace criticality::internal
