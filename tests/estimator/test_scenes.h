@@ -1,0 +1,59 @@
+#pragma once
+// Scenes shared by the estimator tests.
+#include <random>
+#include <string>
+
+#include "bench/paper_scenes.h"
+#include "criticality/scene.h"
+
+namespace criticality::testing {
+
+/** A seeded random scene around an ego on a straight 3-lane road: 0..max_vehicles vehicles
+ *  (some with lanes of their own, some associated, some crossing), 0..max_pedestrians
+ *  pedestrians. Dense when `dense`. */
+inline Scene RandomScene(unsigned seed, int max_vehicles, int max_pedestrians, bool dense) {
+  std::mt19937_64 rng(seed);
+  auto uni = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  Scene s;
+  s.ego.state.speed_mps = uni(0.0, 30.0);
+  s.ego.state.accel_mps2 = uni(-3.0, 2.0);
+  s.ego.state.yaw_rate_radps = uni(-0.05, 0.05);
+  s.ego.lanes = bench::StraightThreeLanes();
+  if (rng() % 4 == 0) s.ego.lanes.left.reset();
+  if (rng() % 4 == 0) s.ego.lanes.right.reset();
+  if (rng() % 5 == 0) s.ego.lanes.right.reset(), s.ego.lanes.own.reset();  // virtual lane
+  const double reach = dense ? 25.0 : 60.0;
+  const int n_veh = static_cast<int>(rng() % (max_vehicles + 1));
+  for (int i = 0; i < n_veh; ++i) {
+    Vehicle v;
+    v.id = "v" + std::to_string(i);
+    v.state.x_m = uni(-reach, reach);
+    v.state.y_m = 3.5 * static_cast<int>(rng() % 3 - 1) + uni(-0.5, 0.5);
+    v.state.speed_mps = uni(0.0, 35.0);
+    v.state.accel_mps2 = uni(-2.0, 2.0);
+    v.length_m = uni(3.0, 6.0);
+    v.width_m = uni(1.5, 2.1);
+    const unsigned kind = rng() % 4;
+    if (kind == 0) {
+      v.lanes = bench::StraightThreeLanes();
+    } else if (kind == 1) {
+      v.state.yaw_rad = 3.14159265358979;  // oncoming, associated with the ego's lanes
+    } else if (kind == 2) {
+      v.state.yaw_rad = uni(1.2, 1.9);  // crossing: virtual lane
+    }
+    s.vehicles.push_back(v);
+  }
+  const int n_ped = static_cast<int>(rng() % (max_pedestrians + 1));
+  for (int i = 0; i < n_ped; ++i) {
+    Pedestrian p;
+    p.id = "p" + std::to_string(i);
+    p.state.x_m = uni(0.0, reach);
+    p.state.y_m = uni(-8.0, 8.0);
+    p.state.yaw_rad = uni(-3.14, 3.14);
+    p.state.speed_mps = uni(0.0, 2.5);
+    s.pedestrians.push_back(p);
+  }
+  return s;
+}
+
+}  // namespace criticality::testing

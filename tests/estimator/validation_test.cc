@@ -1,0 +1,115 @@
+// Bad input: every invalid scene or parameter gives an exception naming the field and value.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "bench/paper_scenes.h"
+#include "criticality/errors.h"
+#include "criticality/estimator.h"
+
+namespace criticality {
+namespace {
+
+// Runs an estimate that must throw E; returns its message.
+template <typename E>
+std::string EstimateError(const Scene& scene, const Params& params = {}) {
+  try {
+    Estimator estimator(params);
+    estimator.Estimate(scene);
+  } catch (const E& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no exception";
+  return "";
+}
+
+void ExpectMentions(const std::string& msg, const std::string& field, const std::string& value) {
+  EXPECT_NE(msg.find(field), std::string::npos) << msg;
+  EXPECT_NE(msg.find(value), std::string::npos) << msg;
+}
+
+TEST(Validation, NanAndInfiniteStates) {
+  Scene s = bench::PaperSceneS1();
+  s.vehicles[1].state.speed_mps = std::nan("");
+  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[1].state.speed_mps", "nan");
+  s = bench::PaperSceneS1();
+  s.ego.state.x_m = std::numeric_limits<double>::infinity();
+  ExpectMentions(EstimateError<InputError>(s), "scene.ego.state.x_m", "inf");
+}
+
+TEST(Validation, NegativeSizesAndSpeeds) {
+  Scene s = bench::PaperSceneS1();
+  s.vehicles[0].length_m = -4.0;
+  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[0].length_m", "-4");
+  s = bench::PaperSceneS1();
+  s.ego.width_m = 0.0;
+  ExpectMentions(EstimateError<InputError>(s), "scene.ego.width_m", "0");
+  s = bench::PaperSceneS1();
+  Pedestrian p;
+  p.state.speed_mps = -1.0;
+  s.pedestrians.push_back(p);
+  ExpectMentions(EstimateError<InputError>(s), "scene.pedestrians[0].state.speed_mps", "-1");
+}
+
+TEST(Validation, DegenerateLanePoints) {
+  Scene s = bench::PaperSceneS1();
+  s.ego.lanes.right->right.points[2] = s.ego.lanes.right->right.points[1];
+  ExpectMentions(EstimateError<InputError>(s), "scene.ego.lanes.right.right", "distinct x");
+  s = bench::PaperSceneS1();
+  s.vehicles[2].lanes->own->left.points[0].y = std::nan("");
+  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[2].lanes.own.left.points[0]", "nan");
+}
+
+TEST(Validation, HorizonAndStepMustBePositive) {
+  Params p;
+  p.horizon_s = 0.0;
+  try {
+    Estimator e(p);
+    FAIL();
+  } catch (const InputError& e) {
+    ExpectMentions(e.what(), "params.horizon_s", "0");
+  }
+  p = Params{};
+  p.step_s = -0.02;
+  EXPECT_THROW(Estimator{p}, InputError);
+  p = Params{};
+  p.step_s = 0.03;  // 2 s is not a whole number of 30 ms steps
+  EXPECT_THROW(Estimator{p}, InputError);
+}
+
+TEST(Validation, ImpossibleCounts) {
+  Params p;
+  p.profiles = 2;  // max, min and zero need 3
+  try {
+    Estimator e(p);
+    FAIL();
+  } catch (const InputError& e) {
+    ExpectMentions(e.what(), "params.profiles", "2");
+  }
+  p = Params{};
+  p.path_sample_times_s = {};
+  EXPECT_THROW(Estimator{p}, InputError);
+  p = Params{};
+  p.path_sample_times_s = {1.0, 0.5};
+  EXPECT_THROW(Estimator{p}, InputError);
+  p = Params{};
+  p.own_lane_samples = 0;
+  EXPECT_THROW(Estimator{p}, InputError);
+  EstimatorOptions opt;
+  opt.threads = -2;
+  EXPECT_THROW(Estimator(Params{}, opt), InputError);
+  EXPECT_THROW(ParseBackend("gpu"), InputError);
+}
+
+TEST(Validation, WorkloadTooLargeForMemory) {
+  Params p;
+  p.max_memory_bytes = 1 << 20;  // 1 MiB
+  const std::string msg = EstimateError<WorkloadError>(bench::PaperSceneS2(), p);
+  EXPECT_NE(msg.find("workload too large"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("max_memory_bytes"), std::string::npos) << msg;
+}
+
+}  // namespace
+}  // namespace criticality
