@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# criticality-bench as a user runs it: the paper's pose-combination counts in the JSON line,
+# and a one-line error with a non-zero exit for bad input.
+set -u
+bench=$1
+fail=0
+check() {  # check DESCRIPTION CONDITION...
+  local what=$1; shift
+  if "$@"; then echo "ok: $what"; else echo "FAILED: $what"; fail=1; fi
+}
+
+for spec in "S1 6 25930800" "S1 5 18007500" "S2 6 86436000" "S2 5 60025000"; do
+  set -- $spec
+  json=$("$bench" --scene "$1" --profiles "$2" --repeat 1 --warmup 0 --json | tail -n 1)
+  check "$1 with $2 profiles: pose_combinations $3" grep -q "\"pose_combinations\":$3," <<<"$json"
+  for key in scene backend profiles ego_trajectories co_trajectories p_collision median_ms min_ms; do
+    check "$1/$2 JSON has $key" grep -q "\"$key\":" <<<"$json"
+  done
+done
+json=$("$bench" --scene S1 --backend reference --repeat 1 --warmup 0 --json | tail -n 1)
+check "reference backend named in JSON" grep -q '"backend":"reference"' <<<"$json"
+
+expect_error() {  # expect_error CODE PATTERN ARGS...
+  local code=$1 pattern=$2; shift 2
+  local err rc
+  err=$("$bench" "$@" 2>&1 >/dev/null); rc=$?
+  check "'$*' exits $code" test "$rc" -eq "$code"
+  check "'$*' error is one line" test "$(printf '%s\n' "$err" | wc -l)" -eq 1
+  check "'$*' error names '$pattern'" grep -q -- "$pattern" <<<"$err"
+}
+expect_error 2 "params.profiles = 2" --profiles 2
+expect_error 2 "scene = 'S9'" --scene S9
+expect_error 2 "backend = 'gpu'" --backend gpu
+expect_error 2 "repeat" --repeat 0
+expect_error 2 "unrecognised option\|unrecognized option" --bogus
+check "--help explains the options" bash -c "'$bench' --help | grep -q -- '--backend'"
+exit $fail
