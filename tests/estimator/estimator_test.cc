@@ -21,6 +21,17 @@ Result Estimate(const Scene& scene, Backend backend = Backend::kCpu, Params para
   return estimator.Estimate(scene);
 }
 
+// A vehicle driving against the ego's direction at (x, y) in the ego frame.
+Vehicle Oncoming(double x, double y) {
+  Vehicle v;
+  v.id = "oncoming";
+  v.state.x_m = x;
+  v.state.y_m = y;
+  v.state.yaw_rad = 3.14159265358979;
+  v.state.speed_mps = 20.0;
+  return v;
+}
+
 TEST(Estimator, PaperCountsS1AndS2) {
   for (int profiles : {6, 5}) {
     Params params;
@@ -142,19 +153,13 @@ TEST(Estimator, MissingLanesGiveFewerPaths) {
 TEST(Estimator, VehiclesAreAssociatedWithTheEgoLanes) {
   Scene scene = bench::PaperSceneS1();
   for (Vehicle& v : scene.vehicles) v.lanes.reset();  // use association
-  Vehicle oncoming;
-  oncoming.id = "oncoming";
-  oncoming.state.x_m = 80.0;
-  oncoming.state.y_m = 3.5;
-  oncoming.state.yaw_rad = 3.14159265358979;
-  oncoming.state.speed_mps = 20.0;
   Vehicle crossing;
   crossing.id = "crossing";
   crossing.state.x_m = 40.0;
   crossing.state.y_m = -15.0;
   crossing.state.yaw_rad = 1.5707963;
   crossing.state.speed_mps = 10.0;
-  scene.vehicles.push_back(oncoming);
+  scene.vehicles.push_back(Oncoming(80.0, 3.5));
   scene.vehicles.push_back(crossing);
   const Result r = Estimate(scene);
   ASSERT_EQ(r.objects.size(), 5u);
@@ -179,13 +184,7 @@ TEST(Estimator, CounterTrafficPenaltyLowersTheRiskFromCounterLanePaths) {
   Scene scene = bench::PaperSceneS1();
   scene.vehicles.clear();
   scene.ego.lanes.left->counter_traffic = true;
-  Vehicle oncoming;
-  oncoming.id = "oncoming";
-  oncoming.state.x_m = 60.0;
-  oncoming.state.y_m = 3.5;
-  oncoming.state.yaw_rad = 3.14159265358979;
-  oncoming.state.speed_mps = 20.0;
-  scene.vehicles.push_back(oncoming);
+  scene.vehicles.push_back(Oncoming(60.0, 3.5));
   Params mild, strict;
   mild.counter_traffic_penalty = 1.0;
   strict.counter_traffic_penalty = 10.0;
