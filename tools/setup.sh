@@ -12,7 +12,8 @@ BUILD_DIR=${BUILD_DIR:-build}
 BUILD_TYPE=${BUILD_TYPE:-Release}
 JOBS=${JOBS:-$(nproc)}
 
-packages=(cmake g++ make libeigen3-dev libboost-program-options-dev libgtest-dev libsqlite3-dev)
+packages=(cmake g++ make libeigen3-dev libboost-program-options-dev libgtest-dev libsqlite3-dev
+          sqlite3 sumo)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

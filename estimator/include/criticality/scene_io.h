@@ -1,0 +1,30 @@
+#pragma once
+/** @file Scene files: a Scene as plain text, written by sumo-criticality --record-scenes and
+ *  replayed by criticality-bench --scene-file (no SUMO needed). Numbers are written with 17
+ *  significant digits, so a replay sees exactly the recorded scene.
+ *
+ *  Format (one record per line, '#' starts a comment):
+ *    criticality-scene 1
+ *    ego ID x y yaw speed accel yaw_rate sideslip length width height|-
+ *    lane own|left|right COUNTER  lx0 ly0 lx1 ly1 lx2 ly2  rx0 ry0 rx1 ry1 rx2 ry2
+ *    vehicle ID x y yaw speed accel yaw_rate sideslip length width height|- LANES(0|1)
+ *    pedestrian ID x y yaw speed accel yaw_rate sideslip length width
+ *  `lane` lines belong to the ego or vehicle line before them (for a vehicle only when its
+ *  LANES flag is 1). */
+#include <istream>
+#include <ostream>
+#include <string>
+
+#include "criticality/scene.h"
+
+namespace criticality {
+
+void WriteScene(std::ostream& out, const Scene& scene);
+
+/** @throws InputError naming the line and what is wrong with it. */
+Scene ReadScene(std::istream& in, const std::string& source = "scene");
+
+/** Reads a scene file; @throws InputError when it cannot be read or parsed. */
+Scene ReadSceneFile(const std::string& path);
+
+}  // namespace criticality

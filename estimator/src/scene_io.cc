@@ -1,0 +1,181 @@
+#include "criticality/scene_io.h"
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <vector>
+
+#include "criticality/errors.h"
+
+namespace criticality {
+namespace {
+
+void WriteState(std::ostream& out, const ObjectState& s) {
+  out << ' ' << s.x_m << ' ' << s.y_m << ' ' << s.yaw_rad << ' ' << s.speed_mps << ' '
+      << s.accel_mps2 << ' ' << s.yaw_rate_radps << ' ' << s.sideslip_rad;
+}
+
+void WriteHeight(std::ostream& out, const std::optional<double>& h) {
+  if (h) out << ' ' << *h;
+  else out << " -";
+}
+
+void WriteLanes(std::ostream& out, const LaneSet& lanes) {
+  auto one = [&](const char* name, const std::optional<Lane>& lane) {
+    if (!lane) return;
+    out << "lane " << name << ' ' << (lane->counter_traffic ? 1 : 0);
+    for (const LaneDivider* d : {&lane->left, &lane->right}) {
+      for (const Point2& p : d->points) out << ' ' << p.x << ' ' << p.y;
+    }
+    out << '\n';
+  };
+  one("own", lanes.own);
+  one("left", lanes.left);
+  one("right", lanes.right);
+}
+
+struct LineReader {
+  std::vector<std::string> words;
+  size_t next{0};
+  std::string where;
+  double Num() {
+    if (next >= words.size()) throw InputError(where + ": too few values");
+    const std::string& w = words[next++];
+    try {
+      size_t used = 0;
+      const double v = std::stod(w, &used);
+      if (used == w.size()) return v;
+    } catch (const std::exception&) {
+    }
+    throw InputError(where + ": '" + w + "' is not a number");
+  }
+  std::string Word() {
+    if (next >= words.size()) throw InputError(where + ": too few values");
+    return words[next++];
+  }
+  ObjectState State() {
+    ObjectState s;
+    s.x_m = Num();
+    s.y_m = Num();
+    s.yaw_rad = Num();
+    s.speed_mps = Num();
+    s.accel_mps2 = Num();
+    s.yaw_rate_radps = Num();
+    s.sideslip_rad = Num();
+    return s;
+  }
+  std::optional<double> Height() {
+    if (next < words.size() && words[next] == "-") {
+      ++next;
+      return std::nullopt;
+    }
+    return Num();
+  }
+};
+
+}  // namespace
+
+void WriteScene(std::ostream& out, const Scene& scene) {
+  out << std::setprecision(17);
+  out << "criticality-scene 1\n";
+  out << "ego " << scene.ego.id;
+  WriteState(out, scene.ego.state);
+  out << ' ' << scene.ego.length_m << ' ' << scene.ego.width_m;
+  WriteHeight(out, scene.ego.height_m);
+  out << '\n';
+  WriteLanes(out, scene.ego.lanes);
+  for (const Vehicle& v : scene.vehicles) {
+    out << "vehicle " << v.id;
+    WriteState(out, v.state);
+    out << ' ' << v.length_m << ' ' << v.width_m;
+    WriteHeight(out, v.height_m);
+    out << ' ' << (v.lanes ? 1 : 0) << '\n';
+    if (v.lanes) WriteLanes(out, *v.lanes);
+  }
+  for (const Pedestrian& p : scene.pedestrians) {
+    out << "pedestrian " << p.id;
+    WriteState(out, p.state);
+    out << ' ' << p.length_m << ' ' << p.width_m << '\n';
+  }
+}
+
+Scene ReadScene(std::istream& in, const std::string& source) {
+  Scene scene;
+  LaneSet* lanes = nullptr;
+  bool header = false, ego = false;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    LineReader r;
+    r.where = source + ":" + std::to_string(n);
+    std::istringstream words(line);
+    for (std::string w; words >> w;) r.words.push_back(w);
+    if (r.words.empty()) continue;
+    const std::string kind = r.Word();
+    if (!header) {
+      if (kind != "criticality-scene" || r.Word() != "1") {
+        throw InputError(r.where + ": not a scene file (expected 'criticality-scene 1')");
+      }
+      header = true;
+      continue;
+    }
+    if (kind == "ego") {
+      scene.ego.id = r.Word();
+      scene.ego.state = r.State();
+      scene.ego.length_m = r.Num();
+      scene.ego.width_m = r.Num();
+      scene.ego.height_m = r.Height();
+      lanes = &scene.ego.lanes;
+      ego = true;
+    } else if (kind == "vehicle") {
+      Vehicle v;
+      v.id = r.Word();
+      v.state = r.State();
+      v.length_m = r.Num();
+      v.width_m = r.Num();
+      v.height_m = r.Height();
+      const bool has_lanes = r.Num() != 0.0;
+      if (has_lanes) v.lanes = LaneSet{};
+      scene.vehicles.push_back(std::move(v));
+      lanes = has_lanes ? &*scene.vehicles.back().lanes : nullptr;
+    } else if (kind == "pedestrian") {
+      Pedestrian p;
+      p.id = r.Word();
+      p.state = r.State();
+      p.length_m = r.Num();
+      p.width_m = r.Num();
+      scene.pedestrians.push_back(std::move(p));
+      lanes = nullptr;
+    } else if (kind == "lane") {
+      if (!lanes) throw InputError(r.where + ": 'lane' must follow an ego or a vehicle with LANES 1");
+      const std::string which = r.Word();
+      Lane lane;
+      lane.counter_traffic = r.Num() != 0.0;
+      for (LaneDivider* d : {&lane.left, &lane.right}) {
+        for (Point2& p : d->points) {
+          p.x = r.Num();
+          p.y = r.Num();
+        }
+      }
+      if (which == "own") lanes->own = lane;
+      else if (which == "left") lanes->left = lane;
+      else if (which == "right") lanes->right = lane;
+      else throw InputError(r.where + ": lane '" + which + "' must be own, left or right");
+    } else {
+      throw InputError(r.where + ": unknown record '" + kind + "' (ego, vehicle, pedestrian, lane)");
+    }
+    if (r.next != r.words.size()) throw InputError(r.where + ": too many values");
+  }
+  if (!header) throw InputError(source + ": empty, not a scene file");
+  if (!ego) throw InputError(source + ": no 'ego' line");
+  return scene;
+}
+
+Scene ReadSceneFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("scene file '" + path + "': cannot be read");
+  return ReadScene(in, path);
+}
+
+}  // namespace criticality

@@ -1,0 +1,53 @@
+#pragma once
+// sumo-criticality's options: command line, or the same options in a config file (--config),
+// which is how a scenario folder describes its run (ego, scripted events, expectations).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "criticality/estimator.h"
+#include "criticality/params.h"
+#include "plugin/scenario_event.h"
+
+namespace criticality::plugin {
+
+enum class Act { kNone, kWarn, kBrake };
+
+struct DriverOptions {
+  std::string sumo_config;               ///< -c; relative paths in a --config file are relative to it
+  std::vector<std::string> sumo_args;    ///< passed through to SUMO (after --)
+  std::vector<std::string> egos;
+  bool all_vehicles{false};
+  Act act{Act::kWarn};
+  double warn_threshold{0.5};
+  double brake_threshold{0.8};
+  /** A warning episode ends when p_cra falls below this (hysteresis, so that one approach is
+   *  one episode); negative: 0.8 x warn_threshold. */
+  double warn_release{-1.0};
+  double range_m{80.0};
+  Params params;
+  EstimatorOptions estimator;
+  std::string output;                    ///< SQLite file, required
+  std::string record_scenes;             ///< directory, optional
+  std::string connect;                   ///< HOST:PORT, optional
+  std::vector<ScenarioEvent> events;
+  double end_time_s{-1.0};               ///< stop at this simulated time (<0: when SUMO is done)
+  std::string expect;                    ///< "", "collision" or "no-collision" (scenario metadata)
+  bool progress{true};                   ///< progress line on a terminal
+  std::string command_line;              ///< for the runs table
+};
+
+/** What ParseDriverOptions decided. */
+struct ParseOutcome {
+  bool exit_now{false};  ///< --help / --version printed
+  int exit_code{0};
+  DriverOptions options;
+};
+
+/** Parses argv (and the --config file it names). Throws std::invalid_argument with a one-line
+ *  message for bad options. */
+ParseOutcome ParseDriverOptions(int argc, const char* const* argv);
+
+std::string ActName(Act act);
+
+}  // namespace criticality::plugin

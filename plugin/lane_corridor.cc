@@ -1,0 +1,64 @@
+#include "plugin/lane_corridor.h"
+
+#include <cmath>
+
+namespace criticality::plugin {
+
+double PolylineLength(const std::vector<Point2>& line) {
+  double length = 0.0;
+  for (size_t i = 1; i < line.size(); ++i) {
+    length += std::hypot(line[i].x - line[i - 1].x, line[i].y - line[i - 1].y);
+  }
+  return length;
+}
+
+Point2 PointAlong(const std::vector<Point2>& line, double s, double* heading) {
+  // Find the segment holding s; before the start and past the end, extend the end segments.
+  size_t seg = 1;
+  double start = 0.0;
+  for (; seg + 1 < line.size(); ++seg) {
+    const double len = std::hypot(line[seg].x - line[seg - 1].x, line[seg].y - line[seg - 1].y);
+    if (s <= start + len) break;
+    start += len;
+  }
+  const Point2& a = line[seg - 1];
+  const Point2& b = line[seg];
+  const double len = std::hypot(b.x - a.x, b.y - a.y);
+  const double ux = len > 0.0 ? (b.x - a.x) / len : 1.0, uy = len > 0.0 ? (b.y - a.y) / len : 0.0;
+  if (heading) *heading = std::atan2(uy, ux);
+  const double t = s - start;
+  return Point2{a.x + ux * t, a.y + uy * t};
+}
+
+LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const core::Pose2& X_WV) {
+  if (c.centre.size() < 2 || !(reach_m > 0.0)) return LaneSet{};
+  const double s[3] = {c.position_m, c.position_m + 0.5 * reach_m, c.position_m + reach_m};
+  // Each divider is the centre line shifted left by `offset` (negative: right).
+  auto divider = [&](double offset) {
+    LaneDivider d;
+    for (int i = 0; i < 3; ++i) {
+      double heading = 0.0;
+      const Point2 p = PointAlong(c.centre, s[i], &heading);
+      const double wx = p.x - std::sin(heading) * offset, wy = p.y + std::cos(heading) * offset;
+      core::WorldToLocal(X_WV, wx, wy, &d.points[i].x, &d.points[i].y);
+    }
+    return d;
+  };
+  const double half = 0.5 * c.width_m;
+  LaneSet set;
+  set.own = Lane{divider(half), divider(-half), false};
+  if (c.left) set.left = Lane{divider(half + c.left->width_m), divider(half), c.left->counter_traffic};
+  if (c.right) set.right = Lane{divider(-half), divider(-half - c.right->width_m), c.right->counter_traffic};
+  // The estimator needs the samples to run forward in the vehicle's frame.
+  for (const std::optional<Lane>* lane : {&set.own, &set.left, &set.right}) {
+    if (!*lane) continue;
+    for (const LaneDivider* d : {&(*lane)->left, &(*lane)->right}) {
+      if (!(d->points[1].x > d->points[0].x + 0.5 && d->points[2].x > d->points[1].x + 0.5)) {
+        return LaneSet{};
+      }
+    }
+  }
+  return set;
+}
+
+}  // namespace criticality::plugin
