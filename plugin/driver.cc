@@ -52,16 +52,8 @@ std::string JsonString(const std::string& s) {
 
 std::unique_ptr<SumoWorld> Open(const DriverOptions& o) {
   if (!o.connect.empty()) {
-    const auto colon = o.connect.rfind(':');
-    int port = 0;
-    try {
-      port = std::stoi(o.connect.substr(colon == std::string::npos ? 0 : colon + 1));
-    } catch (const std::exception&) {
-    }
-    if (colon == std::string::npos || port <= 0 || port > 65535) {
-      throw std::invalid_argument("--connect '" + o.connect + "': expected HOST:PORT, e.g. localhost:8813");
-    }
-    return ConnectLibtraci(o.connect.substr(0, colon), port);
+    const auto colon = o.connect.rfind(':');  // validated by ParseDriverOptions
+    return ConnectLibtraci(o.connect.substr(0, colon), std::stoi(o.connect.substr(colon + 1)));
   }
   std::vector<std::string> args{"-c", o.sumo_config, "--no-step-log", "true", "--xml-validation", "never"};
   args.insert(args.end(), o.sumo_args.begin(), o.sumo_args.end());

@@ -134,6 +134,17 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
   if (!o.sumo_config.empty() && o.connect.empty() && !fs::exists(o.sumo_config)) {
     throw std::invalid_argument("--sumo-config '" + o.sumo_config + "': no such file");
   }
+  if (!o.connect.empty()) {
+    const auto colon = o.connect.rfind(':');
+    int port = 0;
+    try {
+      port = colon == std::string::npos ? 0 : std::stoi(o.connect.substr(colon + 1));
+    } catch (const std::exception&) {
+    }
+    if (colon == std::string::npos || colon == 0 || port <= 0 || port > 65535) {
+      throw std::invalid_argument("--connect '" + o.connect + "': expected HOST:PORT, e.g. localhost:8813");
+    }
+  }
   if (o.output.empty()) throw std::invalid_argument("no --output FILE.sqlite given");
   if (o.egos.empty() && !o.all_vehicles) throw std::invalid_argument("no ego: give --ego ID (repeatable) or --all-vehicles");
   for (double t : {o.warn_threshold, o.brake_threshold}) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #define CRIT_SUMO libtraci
+#define CRIT_SUMO_NO_GET_COLLISIONS 1
 #include "plugin/sumo_world_impl.inc"
 
 namespace criticality::plugin {

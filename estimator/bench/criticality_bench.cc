@@ -14,6 +14,7 @@
 #include "bench/paper_scenes.h"
 #include "criticality/errors.h"
 #include "criticality/estimator.h"
+#include "criticality/scene_io.h"
 
 namespace po = boost::program_options;
 using namespace criticality;
@@ -22,6 +23,7 @@ namespace {
 
 struct Options {
   std::string scene{"S1"};
+  std::string scene_file;
   std::string backend{"cpu"};
   int profiles{6};
   int threads{0};
@@ -30,6 +32,15 @@ struct Options {
   bool json{false};
   bool report{false};
 };
+
+std::string JsonEscape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out;
+}
 
 double Median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -119,6 +130,8 @@ int main(int argc, char** argv) {
   desc.add_options()
       ("help,h", "show this help and exit")
       ("scene", po::value(&opt.scene)->default_value(opt.scene), "S1 or S2")
+      ("scene-file", po::value(&opt.scene_file),
+       "replay a scene file instead (written by sumo-criticality --record-scenes)")
       ("profiles", po::value(&opt.profiles)->default_value(opt.profiles),
        "acceleration/slip profiles per object (paper: 6 or 5)")
       ("backend", po::value(&opt.backend)->default_value(opt.backend),
@@ -146,7 +159,8 @@ int main(int argc, char** argv) {
     EstimatorOptions eopt;
     eopt.backend = ParseBackend(opt.backend);
     eopt.threads = opt.threads;
-    const Scene scene = bench::PaperScene(opt.scene);
+    const Scene scene = opt.scene_file.empty() ? bench::PaperScene(opt.scene) : ReadSceneFile(opt.scene_file);
+    if (!opt.scene_file.empty()) opt.scene = opt.scene_file;
     Estimator estimator(params, eopt);
 
     for (int k = 0; k < opt.warmup; ++k) estimator.Estimate(scene);
@@ -179,7 +193,7 @@ int main(int argc, char** argv) {
           "\"time_steps\":%d,\"p_collision\":%.17g,\"median_ms\":%.6f,\"min_ms\":%.6f,"
           "\"median_trajectory_ms\":%.6f,\"median_collision_ms\":%.6f,\"median_risk_ms\":%.6f,"
           "\"repeat\":%d}\n",
-          opt.scene.c_str(), opt.backend.c_str(), estimator.threads(), opt.profiles,
+          JsonEscape(opt.scene).c_str(), opt.backend.c_str(), estimator.threads(), opt.profiles,
           static_cast<unsigned long long>(c.pose_combinations), c.ego_trajectories,
           c.co_trajectories, c.time_steps, last.p_collision, median, min, Median(traj),
           Median(coll), Median(risk), opt.repeat);
