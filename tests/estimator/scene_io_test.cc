@@ -1,0 +1,50 @@
+// Scene files: what --record-scenes writes, criticality-bench --scene-file reads back exactly.
+#include "criticality/scene_io.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "criticality/errors.h"
+#include "criticality/estimator.h"
+#include "test_scenes.h"
+
+namespace criticality {
+namespace {
+
+TEST(SceneIo, RoundTripGivesTheSameEstimate) {
+  for (unsigned seed : {3u, 4u, 21u}) {
+    const Scene scene = testing::RandomScene(seed, 4, 2, true);
+    std::stringstream file;
+    WriteScene(file, scene);
+    const Scene back = ReadScene(file);
+    ASSERT_EQ(back.vehicles.size(), scene.vehicles.size());
+    ASSERT_EQ(back.pedestrians.size(), scene.pedestrians.size());
+    Estimator a(Params{}), b(Params{});
+    EXPECT_EQ(a.Estimate(scene).p_collision, b.Estimate(back).p_collision) << seed;
+    std::stringstream again;
+    WriteScene(again, back);
+    EXPECT_EQ(again.str(), file.str()) << seed;
+  }
+}
+
+TEST(SceneIo, BadFilesNameTheLine) {
+  auto error = [](const std::string& text) {
+    std::istringstream in(text);
+    try {
+      ReadScene(in, "f.scene");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error("hello\n").find("f.scene:1"), std::string::npos);
+  EXPECT_NE(error("criticality-scene 1\n").find("no 'ego'"), std::string::npos);
+  EXPECT_NE(error("criticality-scene 1\nego e 0 0 0 x 0 0 0 4 2 -\n").find("f.scene:2: 'x'"), std::string::npos);
+  EXPECT_NE(error("criticality-scene 1\npedestrian p 0 0 0 1 0 0 0 .5 .5\nlane own 0 0 0 1 0 2 0 0 1 1 1 2 1\n").find("f.scene:3"),
+            std::string::npos);
+  EXPECT_THROW(ReadSceneFile("/nonexistent.scene"), InputError);
+}
+
+}  // namespace
+}  // namespace criticality

@@ -1,0 +1,96 @@
+// sumo-criticality's options and scenario events.
+#include "plugin/driver_options.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "plugin/scenario_event.h"
+
+namespace criticality::plugin {
+namespace {
+
+ParseOutcome Parse(std::vector<const char*> args) {
+  args.insert(args.begin(), "sumo-criticality");
+  return ParseDriverOptions(static_cast<int>(args.size()), args.data());
+}
+
+TEST(ScenarioEvent, ParsesEveryAction) {
+  ScenarioEvent e = ParseEvent("4.5 ego speed-mode 0");
+  EXPECT_EQ(e.time_s, 4.5);
+  EXPECT_EQ(e.target, "ego");
+  EXPECT_EQ(e.action, EventAction::kSpeedMode);
+  e = ParseEvent("2 ego lane-change 1 30");
+  EXPECT_EQ(e.action, EventAction::kLaneChange);
+  EXPECT_EQ(e.number, 1.0);
+  EXPECT_EQ(e.duration_s, 30.0);
+  e = ParseEvent("0 car7 param junctionModel.ignoreFoeProb 1");
+  EXPECT_EQ(e.key, "junctionModel.ignoreFoeProb");
+  EXPECT_EQ(ParseEvent("1 p0 person-speed 2.5").action, EventAction::kPersonSpeed);
+}
+
+TEST(ScenarioEvent, RejectsBadLinesWithTheLineInTheMessage) {
+  for (const char* bad : {"x ego speed 3", "-1 ego speed 3", "1 ego fly 3", "1 ego speed",
+                          "1 ego speed fast", "1 ego lane-change 1"}) {
+    try {
+      ParseEvent(bad);
+      ADD_FAILURE() << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+    }
+  }
+}
+
+// A .sumocfg that exists (the parser checks that -c names a file).
+std::string SumoCfg() {
+  const std::string path = ::testing::TempDir() + "s.sumocfg";
+  std::ofstream(path) << "<configuration/>\n";
+  return path;
+}
+
+TEST(DriverOptions, CommandLine) {
+  const std::string cfg = SumoCfg();
+  const ParseOutcome o = Parse({"-c", cfg.c_str(), "--ego", "a", "--ego", "b",
+                                "--act", "brake", "--output", "x.sqlite", "--profiles", "5",
+                                "--", "--seed", "7"});
+  EXPECT_EQ(o.options.egos, (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(o.options.act, Act::kBrake);
+  EXPECT_EQ(o.options.params.profiles, 5);
+  EXPECT_EQ(o.options.sumo_args, (std::vector<std::string>{"--seed", "7"}));
+  EXPECT_DOUBLE_EQ(o.options.warn_release, 0.8 * o.options.warn_threshold);
+}
+
+TEST(DriverOptions, ConfigFileIsRelativeToItsFolderAndCommandLineWins) {
+  const std::string dir = ::testing::TempDir();
+  {
+    std::ofstream sumocfg(dir + "/s.sumocfg");
+    sumocfg << "<configuration/>\n";
+    std::ofstream cfg(dir + "/scenario.cfg");
+    cfg << "sumo-config = s.sumocfg\nego = ego\nact = none\nevent = 1 ego speed 3\nevent = 2 ego speed-mode 0\n";
+  }
+  const std::string cfg = dir + "/scenario.cfg";
+  const ParseOutcome o = Parse({"--config", cfg.c_str(), "--act", "warn", "--output", "y.sqlite"});
+  EXPECT_EQ(o.options.sumo_config, (std::filesystem::path(dir) / "s.sumocfg").lexically_normal().string());
+  EXPECT_EQ(o.options.act, Act::kWarn);
+  EXPECT_EQ(o.options.events.size(), 2u);
+}
+
+TEST(DriverOptions, BadOptionsAreOneLineErrors) {
+  EXPECT_THROW(Parse({"--ego", "e", "--output", "x.sqlite"}), std::invalid_argument);  // no sumo config
+  EXPECT_THROW(Parse({"--connect", "host", "--ego", "e", "--output", "x"}), std::invalid_argument);
+  EXPECT_THROW(Parse({"--connect", "h:70000", "--ego", "e", "--output", "x"}), std::invalid_argument);
+  EXPECT_THROW(Parse({"--connect", "h:1", "--output", "x"}), std::invalid_argument);  // no ego
+  EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e"}), std::invalid_argument);     // no output
+  EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--warn-threshold", "1.5"}),
+               std::invalid_argument);
+  EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--horizon", "0"}),
+               std::invalid_argument);
+  EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--bogus"}), std::invalid_argument);
+  EXPECT_NO_THROW(Parse({"--connect", "localhost:8813", "--all-vehicles", "--output", "x"}));
+}
+
+}  // namespace
+}  // namespace criticality::plugin

@@ -1,0 +1,74 @@
+// Lane corridors (SUMO lane centre lines) -> the estimator's LaneSet in the vehicle frame.
+#include "plugin/lane_corridor.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/geometry.h"
+
+namespace criticality::plugin {
+namespace {
+
+TEST(LaneCorridor, PointAlongWalksAndExtrapolates) {
+  const std::vector<Point2> line{{0, 0}, {10, 0}, {10, 10}};
+  double h = 0.0;
+  Point2 p = PointAlong(line, 5.0, &h);
+  EXPECT_NEAR(p.x, 5.0, 1e-12);
+  EXPECT_NEAR(h, 0.0, 1e-12);
+  p = PointAlong(line, 15.0, &h);
+  EXPECT_NEAR(p.x, 10.0, 1e-12);
+  EXPECT_NEAR(p.y, 5.0, 1e-12);
+  EXPECT_NEAR(h, core::kPi / 2, 1e-12);
+  p = PointAlong(line, 25.0, &h);  // past the end: extended
+  EXPECT_NEAR(p.y, 15.0, 1e-12);
+  p = PointAlong(line, -3.0, &h);  // before the start: extended backwards
+  EXPECT_NEAR(p.x, -3.0, 1e-12);
+  EXPECT_NEAR(PolylineLength(line), 20.0, 1e-12);
+}
+
+TEST(LaneCorridor, NorthboundLaneBecomesStraightLanesInTheVehicleFrame) {
+  // A north-going lane (vertical in the world) with a neighbour on each side: in the vehicle's
+  // frame the dividers must be horizontal lines at +-1.6 and +-1.6 + 3.2.
+  LaneCorridor c;
+  c.centre = {{50, 0}, {50, 500}};
+  c.position_m = 100.0;
+  c.width_m = 3.2;
+  c.left = NeighbourLane{3.2, true};
+  c.right = NeighbourLane{3.2, false};
+  const core::Pose2 X_WV{50.0, 100.0, core::kPi / 2};
+  const LaneSet set = SampleLaneSet(c, 60.0, X_WV);
+  ASSERT_TRUE(set.own && set.left && set.right);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(set.own->left.points[i].x, 30.0 * i, 1e-9);
+    EXPECT_NEAR(set.own->left.points[i].y, 1.6, 1e-9);
+    EXPECT_NEAR(set.own->right.points[i].y, -1.6, 1e-9);
+    EXPECT_NEAR(set.left->left.points[i].y, 4.8, 1e-9);
+    EXPECT_NEAR(set.right->right.points[i].y, -4.8, 1e-9);
+  }
+  EXPECT_TRUE(set.left->counter_traffic);
+  EXPECT_FALSE(set.right->counter_traffic);
+}
+
+TEST(LaneCorridor, ContinuesAroundACornerIntoTheNextLane) {
+  LaneCorridor c;
+  c.centre = {{0, 0}, {20, 0}, {20, 100}};  // a right angle 10 m ahead of the vehicle
+  c.position_m = 10.0;
+  c.width_m = 3.0;
+  const LaneSet set = SampleLaneSet(c, 20.0, core::Pose2{10.0, 0.0, 0.0});
+  ASSERT_TRUE(set.own);
+  // The farthest sample lies 10 m past the corner: to the vehicle's left.
+  EXPECT_GT(set.own->left.points[2].y, 5.0);
+}
+
+TEST(LaneCorridor, VehicleAcrossItsLaneGetsNoLanes) {
+  LaneCorridor c;
+  c.centre = {{0, 0}, {100, 0}};
+  c.position_m = 20.0;
+  // Heading north while the lane runs east: the samples do not run forward.
+  EXPECT_FALSE(SampleLaneSet(c, 40.0, core::Pose2{20.0, 0.0, core::kPi / 2}).own);
+  EXPECT_FALSE(SampleLaneSet(LaneCorridor{}, 40.0, core::Pose2{}).own);
+}
+
+}  // namespace
+}  // namespace criticality::plugin
