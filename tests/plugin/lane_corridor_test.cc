@@ -50,15 +50,18 @@ TEST(LaneCorridor, NorthboundLaneBecomesStraightLanesInTheVehicleFrame) {
   EXPECT_FALSE(set.right->counter_traffic);
 }
 
-TEST(LaneCorridor, ContinuesAroundACornerIntoTheNextLane) {
+TEST(LaneCorridor, ContinuesAroundABendIntoTheNextLane) {
   LaneCorridor c;
-  c.centre = {{0, 0}, {20, 0}, {20, 100}};  // a right angle 10 m ahead of the vehicle
+  c.centre = {{0, 0}, {20, 0}, {120, 100}};  // a 45 deg left bend 10 m ahead of the vehicle
   c.position_m = 10.0;
   c.width_m = 3.0;
   const LaneSet set = SampleLaneSet(c, 20.0, core::Pose2{10.0, 0.0, 0.0});
   ASSERT_TRUE(set.own);
-  // The farthest sample lies 10 m past the corner: to the vehicle's left.
-  EXPECT_GT(set.own->left.points[2].y, 5.0);
+  // The farthest sample lies 10 m past the bend: 7 m to the vehicle's left.
+  EXPECT_NEAR(set.own->left.points[2].y, 10.0 / std::sqrt(2.0) + 1.5 / std::sqrt(2.0), 1e-9);
+  // A right angle cannot be a lane y(x) in the vehicle's frame: no lanes (a virtual lane).
+  c.centre = {{0, 0}, {20, 0}, {20, 100}};
+  EXPECT_FALSE(SampleLaneSet(c, 20.0, core::Pose2{10.0, 0.0, 0.0}).own);
 }
 
 TEST(LaneCorridor, VehicleAcrossItsLaneGetsNoLanes) {
