@@ -71,6 +71,10 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
       ("backend", po::value(&backend)->default_value(backend), "reference | cpu")
       ("threads", po::value(&o.estimator.threads)->default_value(0), "estimator threads (0 = all cores)")
       ("profiles", po::value(&o.params.profiles)->default_value(o.params.profiles), "acceleration/slip profiles per object (paper: 6 or 5)")
+      ("own-lane-samples", po::value(&o.params.own_lane_samples)->default_value(o.params.own_lane_samples),
+       "lateral path samples across the own lane (paper: 3)")
+      ("neighbour-lane-samples", po::value(&o.params.neighbour_lane_samples)->default_value(o.params.neighbour_lane_samples),
+       "lateral path samples across each neighbouring lane (paper: 2); ego paths = samples^3")
       ("horizon", po::value(&o.params.horizon_s)->default_value(o.params.horizon_s), "prediction horizon (s)")
       ("step", po::value(&o.params.step_s)->default_value(o.params.step_s), "prediction step (s)")
       ("range", po::value(&o.range_m)->default_value(o.range_m), "vehicles and pedestrians within this distance of an ego are considered (m)");

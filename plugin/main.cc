@@ -1,4 +1,5 @@
 // sumo-criticality: what a SUMO user runs instead of `sumo`. See --help.
+#include <csignal>
 #include <iostream>
 #include <string>
 
@@ -20,6 +21,8 @@ std::string OneLine(std::string s) {
 
 int main(int argc, char** argv) {
   using namespace criticality::plugin;
+  // A SUMO that goes away under --connect must be an error, not a silent SIGPIPE death.
+  std::signal(SIGPIPE, SIG_IGN);
   try {
     const ParseOutcome parsed = ParseDriverOptions(argc, argv);
     if (parsed.exit_now) return parsed.exit_code;

@@ -90,6 +90,40 @@ case $case in
     check "--connect: the rear-end collision recorded" \
       test "$(q "$db" "select count(*) from collisions where 'ego' in (collider, victim)")" -ge 1
     ;;
+  all_vehicles)
+    db=$work/all.sqlite
+    summary=$(run motorway_dense_free "$db" --all-vehicles --end 2 --own-lane-samples 1 --neighbour-lane-samples 1)
+    echo "$summary"
+    check "--all-vehicles: every one of the 7 vehicles is an ego" \
+      test "$(q "$db" "select count(distinct ego) from steps")" -eq 7
+    check "--all-vehicles: summary counts 7 egos" grep -q '"egos":7,' <<<"$summary"
+    ;;
+  disk_full)
+    # A file-size limit makes every write past 32 KB fail, as a full disk does.
+    db=$work/full.sqlite; rm -f "$db"*
+    err=$( (ulimit -f 32; trap '' XFSZ; exec "$driver" --config "$scenarios/rear_end/scenario.cfg" \
+             --output "$db" --no-progress) 2>&1 >/dev/null); rc=$?
+    echo "   -> $err"
+    check "full disk: exit 4" test $rc -eq 4
+    check "full disk: one-line error naming the output" test "$(printf '%s\n' "$err" | wc -l)" -eq 1
+    check "full disk: error names the file" grep -q "full.sqlite" <<<"$err"
+    check "full disk: the steps completed before are readable" test "$(q "$db" "select count(*) from steps")" -ge 10
+    ;;
+  sumo_dies)
+    # SUMO goes away mid-run (a closed sumo-gui): SUMO error, completed steps kept.
+    port=$(python3 -c "import socket; s=socket.socket(); s.bind(('127.0.0.1',0)); print(s.getsockname()[1])")
+    db=$work/dies.sqlite; rm -f "$db"
+    (cd "$scenarios/motorway_dense_free" && SUMO_HOME=${SUMO_HOME:-/usr/share/sumo} exec sumo -c motorway.sumocfg \
+       --remote-port "$port" --no-step-log --xml-validation never >/dev/null 2>&1) &
+    sumo_pid=$!
+    (sleep 4; kill -9 $sumo_pid 2>/dev/null) &
+    err=$("$driver" --connect "127.0.0.1:$port" --ego ego --output "$db" --no-progress 2>&1 >/dev/null); rc=$?
+    echo "   -> $err"
+    check "SUMO died: exit 3" test $rc -eq 3
+    check "SUMO died: one-line error" test "$(printf '%s\n' "$err" | wc -l)" -eq 1
+    check "SUMO died: steps before are kept" test "$(q "$db" "select count(*) from steps")" -ge 1
+    check "SUMO died: the run is marked failed" grep -q "^failed" <<<"$(q "$db" "select status from runs")"
+    ;;
   bad_input)
     expect_error() {  # expect_error CODE PATTERN ARGS...
       local code=$1 pattern=$2; shift 2
