@@ -12,6 +12,12 @@ check() {  # check DESCRIPTION COMMAND...
   if "$@"; then echo "ok: $what"; else echo "FAILED: $what"; fail=1; fi
 }
 q() { sqlite3 "$1" "$2"; }
+start_sumo() {  # start_sumo SCENARIO SUMOCFG: a sumo server on a free port; sets port, sumo_pid
+  port=$(python3 -c "import socket; s=socket.socket(); s.bind(('127.0.0.1',0)); print(s.getsockname()[1])")
+  (cd "$scenarios/$1" && SUMO_HOME=${SUMO_HOME:-/usr/share/sumo} exec sumo -c "$2" \
+     --remote-port "$port" --no-step-log --xml-validation never >/dev/null 2>&1) &
+  sumo_pid=$!
+}
 run() {  # run NAME DB [extra args]: runs a scenario, echoes its summary line
   local name=$1 db=$2; shift 2
   rm -f "$db"
@@ -75,11 +81,8 @@ case $case in
     check "criticality-bench --scene-file replays the recorded estimate exactly ($p_db = $p_bench)" test "$p_db" = "$p_bench"
     ;;
   connect)
-    port=$(python3 -c "import socket; s=socket.socket(); s.bind(('127.0.0.1',0)); print(s.getsockname()[1])")
     db=$work/connect.sqlite; rm -f "$db"
-    (cd "$scenarios/rear_end" && SUMO_HOME=${SUMO_HOME:-/usr/share/sumo} exec sumo -c rear_end.sumocfg \
-       --remote-port "$port" --no-step-log --xml-validation never >/dev/null 2>&1) &
-    sumo_pid=$!
+    start_sumo rear_end rear_end.sumocfg
     summary=$("$driver" --connect "127.0.0.1:$port" --ego ego --output "$db" --no-progress \
                 --event "0 ego speed-mode 0" --event "0 ego speed 30" --event "0 ego lane-change-mode 0")
     rc=$?
@@ -111,11 +114,8 @@ case $case in
     ;;
   sumo_dies)
     # SUMO goes away mid-run (a closed sumo-gui): SUMO error, completed steps kept.
-    port=$(python3 -c "import socket; s=socket.socket(); s.bind(('127.0.0.1',0)); print(s.getsockname()[1])")
     db=$work/dies.sqlite; rm -f "$db"
-    (cd "$scenarios/motorway_dense_free" && SUMO_HOME=${SUMO_HOME:-/usr/share/sumo} exec sumo -c motorway.sumocfg \
-       --remote-port "$port" --no-step-log --xml-validation never >/dev/null 2>&1) &
-    sumo_pid=$!
+    start_sumo motorway_dense_free motorway.sumocfg
     (sleep 4; kill -9 $sumo_pid 2>/dev/null) &
     err=$("$driver" --connect "127.0.0.1:$port" --ego ego --output "$db" --no-progress 2>&1 >/dev/null); rc=$?
     echo "   -> $err"
