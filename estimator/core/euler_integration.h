@@ -16,7 +16,8 @@ namespace criticality::core {
 CRIT_HD void EulerStep(const StateDerivative& d, double tau, MotionState* s) {
   const double cb = std::cos(s->beta), sb = std::sin(s->beta);
   const double cp = std::cos(s->yaw), sp = std::sin(s->yaw);
-  const double cpb = std::cos(s->yaw + s->beta), spb = std::sin(s->yaw + s->beta);
+  // cos/sin(psi + beta) by the angle-sum identities: two products instead of two calls.
+  const double cpb = cp * cb - sp * sb, spb = sp * cb + cp * sb;
   const double h = 0.5 * tau * tau;
   const double x = s->x + cpb * s->v * tau + cp * s->ax * h - sp * s->ay * h;
   const double y = s->y + spb * s->v * tau + sp * s->ax * h + cp * s->ay * h;

@@ -18,6 +18,7 @@ struct Pose2 {
 
 /** Wraps an angle into [-pi, pi). */
 CRIT_HD double WrapAngle(double a) {
+  if (a >= -kPi && a < kPi) return a;  // the common case, exact
   a = std::fmod(a + kPi, 2.0 * kPi);
   if (a < 0.0) a += 2.0 * kPi;
   return a - kPi;

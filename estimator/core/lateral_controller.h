@@ -18,6 +18,7 @@
 #include "core/geometry.h"
 #include "core/hd.h"
 #include "core/lane_fit.h"
+#include "core/min_max.h"
 #include "core/state.h"
 
 namespace criticality::core {
@@ -35,8 +36,6 @@ CRIT_HD double PaperSteeringLawDeg(double v, double d_path, double e_psi) {
   const double g = std::fabs((-0.018 * v + 1.5) * d_path);
   return (g + 0.5) * d_path + (-g + 9.5) * (3.8197 * e_psi);
 }
-
-CRIT_HD double Clamp(double x, double lo, double hi) { return std::fmin(std::fmax(x, lo), hi); }
 
 /** Prediction time for the controller's predicted position. */
 CRIT_HD double PreviewTime(const ControllerLimits& c, double v) {

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/hd.h"
+#include "core/min_max.h"
 #include "core/state.h"
 #include "core/vehicle_params.h"
 
@@ -33,7 +34,7 @@ CRIT_HD StateDerivative OneTrackDerivative(const VehicleParams& p, const MotionS
 CRIT_HD double SeamSpeed(const VehicleParams& p, double tau, double stability_factor) {
   const double k1 = (p.cf_npr + p.cr_npr) / p.mass_kg;
   const double k2 = (p.cf_npr * p.lf_m * p.lf_m + p.cr_npr * p.lr_m * p.lr_m) / p.yaw_inertia_kgm2;
-  return std::fmax(p.kinematic_below_mps, stability_factor * tau * std::fmax(k1, k2));
+  return Max(p.kinematic_below_mps, stability_factor * tau * Max(k1, k2));
 }
 
 }  // namespace criticality::core

@@ -7,13 +7,14 @@
 #include <cmath>
 
 #include "core/hd.h"
+#include "core/min_max.h"
 
 namespace criticality::core {
 
 CRIT_HD void PedestrianStep(double heading, double accel, double max_speed, double tau, double* x,
                             double* y, double* v) {
   double v_next = *v + accel * tau;
-  v_next = std::fmin(std::fmax(v_next, 0.0), max_speed);
+  v_next = Clamp(v_next, 0.0, max_speed);
   const double accel_eff = (v_next - *v) / tau;
   const double dist = *v * tau + accel_eff * 0.5 * tau * tau;
   *x += std::cos(heading) * dist;

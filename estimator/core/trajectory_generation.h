@@ -30,51 +30,89 @@ CRIT_HD double InitialSteer(const HypothesisSet& h, const ControllerLimits& c) {
   return Clamp(std::atan(wheelbase * h.yaw_rate0 / h.v0), -c.max_steer_rad, c.max_steer_rad);
 }
 
+/** Where a vehicle simulation stands between steps; lets ego paths that share their first
+ *  path sections share the simulation of that prefix (the state after it is the same). */
+struct SimulationState {
+  MotionState s;      ///< in the object's local frame
+  double steer{0.0};  ///< last commanded steering angle
+  int instant{0};     ///< current sample instant (path section)
+};
+
+CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h, const SimulationConfig& cfg) {
+  SimulationState st;
+  st.s.v = h.v0;
+  st.s.beta = h.beta0;
+  st.s.yaw_rate = h.yaw_rate0;
+  st.s.ax = h.accel0;
+  st.s.ay = h.v0 * h.yaw_rate0;
+  st.steer = InitialSteer(h, cfg.controller);
+  return st;
+}
+
+/** Advances a VEHICLE hypothesis (profile, path) over steps [n_begin, n_end) from `st`,
+ *  writing the poses (scene frame) of those steps to x[n], y[n], yaw[n]. For a shared prefix,
+ *  any path of the group gives the same sections (SectionOfPath) up to the group's instant. */
+CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig& cfg, int profile,
+                                  int path, int n_begin, int n_end, SimulationState* st, double* x,
+                                  double* y, double* yaw) {
+  const double tau = cfg.tau;
+  const double target = h.profile_target[profile];
+  const double c0 = std::cos(h.X_WL.yaw), s0 = std::sin(h.X_WL.yaw);
+  MotionState& s = st->s;
+  for (int n = n_begin; n < n_end; ++n) {
+    const double t = n * tau;
+    while (st->instant < h.n_instants - 1 && t >= h.instant_time[st->instant]) ++st->instant;
+    const Parabola& section = h.section[st->instant][SectionOfPath(h, path, st->instant)];
+    st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau);
+    const double longitudinal = RampedValue(t, h.profile_start, target, h.latency, h.rate);
+    const bool kinematic = s.v < h.seam_speed;
+    StateDerivative d;
+    if (h.model == MotionModelKind::kTwoTrack) {
+      d = kinematic ? KinematicSingleTrack(h.vehicle, st->steer, AccelFromSlip(h.vehicle, longitudinal), &s)
+                    : TwoTrackDerivative(h.vehicle, s, st->steer, longitudinal);
+    } else {
+      d = kinematic ? KinematicSingleTrack(h.vehicle, st->steer, longitudinal, &s)
+                    : OneTrackDerivative(h.vehicle, s, st->steer, longitudinal);
+    }
+    d.v_dot = NonReversingAccel(s.v, d.v_dot, tau);
+    EulerStep(d, tau, &s);
+    if (s.v < 0.0) s.v = 0.0;  // rounding guard
+    // Local frame -> scene frame (LocalToWorld with the rotation hoisted out of the loop).
+    x[n] = h.X_WL.x + c0 * s.x - s0 * s.y;
+    y[n] = h.X_WL.y + s0 * s.x + c0 * s.y;
+    yaw[n] = h.X_WL.yaw + s.yaw;
+  }
+}
+
+/** First step of each sample instant's span: the instant in force at step n is the k with
+ *  boundary[k] <= n < boundary[k+1] (boundary[0] = 0, boundary[n_instants] = n_steps). */
+CRIT_HD void InstantBoundaries(const HypothesisSet& h, const SimulationConfig& cfg, int* boundary) {
+  int instant = 0;
+  boundary[0] = 0;
+  for (int n = 0; n < cfg.n_steps; ++n) {
+    const double t = n * cfg.tau;
+    while (instant < h.n_instants - 1 && t >= h.instant_time[instant]) boundary[++instant] = n;
+  }
+  for (int k = instant + 1; k <= h.n_instants; ++k) boundary[k] = cfg.n_steps;
+}
+
 /** Simulates hypothesis (profile, path) of `h`; writes n_steps poses to x[], y[], yaw[]. */
 CRIT_HD void SimulateHypothesis(const HypothesisSet& h, const SimulationConfig& cfg, int profile,
                                 int path, double* x, double* y, double* yaw) {
-  const double tau = cfg.tau;
-  const double target = h.profile_target[profile];
   if (h.model == MotionModelKind::kPedestrian) {
     const double heading = h.heading[path];
+    const double target = h.profile_target[profile];
     double px = h.X_WL.x, py = h.X_WL.y, v = Clamp(h.v0, 0.0, h.max_speed);
     for (int n = 0; n < cfg.n_steps; ++n) {
-      PedestrianStep(heading, target, h.max_speed, tau, &px, &py, &v);
+      PedestrianStep(heading, target, h.max_speed, cfg.tau, &px, &py, &v);
       x[n] = px;
       y[n] = py;
       yaw[n] = heading;
     }
     return;
   }
-  MotionState s;
-  s.v = h.v0;
-  s.beta = h.beta0;
-  s.yaw_rate = h.yaw_rate0;
-  s.ax = h.accel0;
-  s.ay = h.v0 * h.yaw_rate0;
-  double steer = InitialSteer(h, cfg.controller);
-  int instant = 0;
-  for (int n = 0; n < cfg.n_steps; ++n) {
-    const double t = n * tau;
-    while (instant < h.n_instants - 1 && t >= h.instant_time[instant]) ++instant;
-    const Parabola& section = h.section[instant][SectionOfPath(h, path, instant)];
-    steer = SteeringCommand(cfg.controller, section, s, steer, tau);
-    const double longitudinal = RampedValue(t, h.profile_start, target, h.latency, h.rate);
-    const bool kinematic = s.v < h.seam_speed;
-    StateDerivative d;
-    if (h.model == MotionModelKind::kTwoTrack) {
-      d = kinematic ? KinematicSingleTrack(h.vehicle, steer, AccelFromSlip(h.vehicle, longitudinal), &s)
-                    : TwoTrackDerivative(h.vehicle, s, steer, longitudinal);
-    } else {
-      d = kinematic ? KinematicSingleTrack(h.vehicle, steer, longitudinal, &s)
-                    : OneTrackDerivative(h.vehicle, s, steer, longitudinal);
-    }
-    d.v_dot = NonReversingAccel(s.v, d.v_dot, tau);
-    EulerStep(d, tau, &s);
-    if (s.v < 0.0) s.v = 0.0;  // rounding guard
-    LocalToWorld(h.X_WL, s.x, s.y, &x[n], &y[n]);
-    yaw[n] = h.X_WL.yaw + s.yaw;
-  }
+  SimulationState st = InitialSimulationState(h, cfg);
+  SimulateVehicleSteps(h, cfg, profile, path, 0, cfg.n_steps, &st, x, y, yaw);
 }
 
 }  // namespace criticality::core

@@ -13,6 +13,7 @@
 
 #include "core/geometry.h"
 #include "core/hd.h"
+#include "core/min_max.h"
 #include "core/state.h"
 #include "core/vehicle_params.h"
 
@@ -20,12 +21,15 @@ namespace criticality::core {
 
 constexpr double kMagicFormulaShapeC = 1.65;
 constexpr double kMagicFormulaPeakSlip = 0.1;
+/** Stiffness factor B = tan(pi / (2 C)) / peak slip, so that the force peaks at the peak slip
+ *  (tests/estimator/core/motion_models_test.cc checks it against the formula). */
+constexpr double kMagicFormulaB = 14.043035064481925;
 
 /** Normalised longitudinal force F_x / (mu F_z) at longitudinal slip `slip`. */
 CRIT_HD double LongitudinalForceFactor(double slip) {
-  const double b = std::tan(kPi / (2.0 * kMagicFormulaShapeC)) / kMagicFormulaPeakSlip;
-  const double arg = std::fmin(kMagicFormulaShapeC * std::atan(b * slip), kPi / 2.0);
-  return std::sin(std::fmax(arg, -kPi / 2.0));
+  const double b = kMagicFormulaB;
+  const double arg = Clamp(kMagicFormulaShapeC * std::atan(b * slip), -kPi / 2.0, kPi / 2.0);
+  return std::sin(arg);
 }
 
 /** Steady longitudinal acceleration (straight line) that a slip gives on every wheel. */
@@ -35,7 +39,7 @@ CRIT_HD double AccelFromSlip(const VehicleParams& p, double slip) {
 
 /** Inverse of AccelFromSlip on the stable branch |slip| <= peak; saturates beyond mu g. */
 CRIT_HD double SlipFromAccel(const VehicleParams& p, double accel) {
-  const double b = std::tan(kPi / (2.0 * kMagicFormulaShapeC)) / kMagicFormulaPeakSlip;
+  const double b = kMagicFormulaB;
   double f = accel / (p.friction * kGravity);
   f = std::fmax(-1.0, std::fmin(1.0, f));
   return std::tan(std::asin(f) / kMagicFormulaShapeC) / b;
@@ -48,14 +52,16 @@ struct ChassisForces {
   double mz{0.0};
 };
 
+/** @param cb, sb cos and sin of s.beta (the caller has them). */
 CRIT_HD ChassisForces TwoTrackForces(const VehicleParams& p, const MotionState& s, double steer,
-                                     double slip) {
+                                     double slip, double cb, double sb) {
   const double wheelbase = p.lf_m + p.lr_m;
   const double weight = p.mass_kg * kGravity;
   const double fz_front = 0.5 * weight * p.lr_m / wheelbase;  // per wheel
   const double fz_rear = 0.5 * weight * p.lf_m / wheelbase;
   const double fx_factor = LongitudinalForceFactor(slip);
-  const double vx_cog = s.v * std::cos(s.beta), vy_cog = s.v * std::sin(s.beta);
+  const double vx_cog = s.v * cb, vy_cog = s.v * sb;
+  const double cos_steer = std::cos(steer), sin_steer = std::sin(steer);
   ChassisForces out;
   for (int wheel = 0; wheel < 4; ++wheel) {
     const bool front = wheel < 2;
@@ -67,7 +73,9 @@ CRIT_HD ChassisForces TwoTrackForces(const VehicleParams& p, const MotionState& 
     // Velocity of the wheel centre in the vehicle frame, then its slip angle.
     const double vx = vx_cog - s.yaw_rate * yw;
     const double vy = vy_cog + s.yaw_rate * xw;
-    const double alpha = delta - std::atan2(vy, vx);
+    // vx > 0 above the seam speed (the model is not used below it), so atan(vy / vx) is
+    // atan2(vy, vx), at about half the cost.
+    const double alpha = delta - std::atan(vy / vx);
     double fl = p.friction * fz * fx_factor;  // in the wheel frame
     double fs = c_wheel * alpha;
     const double limit = p.friction * fz;
@@ -76,7 +84,7 @@ CRIT_HD ChassisForces TwoTrackForces(const VehicleParams& p, const MotionState& 
       fl *= limit / norm;
       fs *= limit / norm;
     }
-    const double cd = std::cos(delta), sd = std::sin(delta);
+    const double cd = front ? cos_steer : 1.0, sd = front ? sin_steer : 0.0;
     const double fxv = cd * fl - sd * fs;
     const double fyv = sd * fl + cd * fs;
     out.fx += fxv;
@@ -87,10 +95,15 @@ CRIT_HD ChassisForces TwoTrackForces(const VehicleParams& p, const MotionState& 
 }
 
 /** [dv, dbeta, ddpsi] of the two-track model. Singular at v = 0 (see SeamSpeed). */
+CRIT_HD ChassisForces TwoTrackForces(const VehicleParams& p, const MotionState& s, double steer,
+                                     double slip) {
+  return TwoTrackForces(p, s, steer, slip, std::cos(s.beta), std::sin(s.beta));
+}
+
 CRIT_HD StateDerivative TwoTrackDerivative(const VehicleParams& p, const MotionState& s,
                                            double steer, double slip) {
-  const ChassisForces f = TwoTrackForces(p, s, steer, slip);
   const double cb = std::cos(s.beta), sb = std::sin(s.beta);
+  const ChassisForces f = TwoTrackForces(p, s, steer, slip, cb, sb);
   StateDerivative d;
   d.v_dot = (f.fx * cb + f.fy * sb) / p.mass_kg;
   d.beta_dot = (-f.fx * sb + f.fy * cb) / (p.mass_kg * s.v) - s.yaw_rate;

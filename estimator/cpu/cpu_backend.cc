@@ -1,6 +1,8 @@
 #include "cpu/cpu_backend.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/oriented_box.h"
 #include "core/trajectory_generation.h"
@@ -9,84 +11,252 @@
 namespace criticality {
 namespace {
 
-void CacheTrig(const internal::TrajectoryStore& t, std::vector<double>* c, std::vector<double>* s,
-               int threads) {
-  c->resize(t.yaw.size());
-  s->resize(t.yaw.size());
-  internal::ParallelFor(static_cast<int>(t.trajectories), threads, [&](int begin, int end) {
-    for (size_t k = t.Offset(begin); k < t.Offset(end); ++k) {
-      (*c)[k] = std::cos(t.yaw[k]);
-      (*s)[k] = std::sin(t.yaw[k]);
-    }
-  });
+using internal::TrajectoryStore;
+
+// An axis-aligned box of centres, turned into a circle at the end.
+struct Aabb {
+  double x0{1e300}, x1{-1e300}, y0{1e300}, y1{-1e300};
+  void Add(double x, double y) {
+    x0 = std::min(x0, x);
+    x1 = std::max(x1, x);
+    y0 = std::min(y0, y);
+    y1 = std::max(y1, y);
+  }
+  void Add(const Aabb& o) {
+    x0 = std::min(x0, o.x0);
+    x1 = std::max(x1, o.x1);
+    y0 = std::min(y0, o.y0);
+    y1 = std::max(y1, o.y1);
+  }
+};
+
+void StoreCircle(const Aabb& a, size_t k, std::vector<double>* cx, std::vector<double>* cy,
+                 std::vector<double>* r) {
+  (*cx)[k] = 0.5 * (a.x0 + a.x1);
+  (*cy)[k] = 0.5 * (a.y0 + a.y1);
+  (*r)[k] = 0.5 * std::hypot(a.x1 - a.x0, a.y1 - a.y0);
+}
+
+int Power(int base, int exp) {
+  int r = 1;
+  for (int k = 0; k < exp; ++k) r *= base;
+  return r;
 }
 
 }  // namespace
 
 CpuBackend::CpuBackend(int threads) : threads_(internal::ResolveThreads(threads)) {}
 
+void CpuBackend::FinishSpan(const TrajectoryStore& t, std::vector<double>* c, std::vector<double>* s,
+                            BlockBounds* b, int tr, int n0, int n1, int q0, int q1) const {
+  const size_t base = t.Offset(tr);
+  for (int n = n0; n < n1; ++n) {
+    (*c)[base + n] = std::cos(t.yaw[base + n]);
+    (*s)[base + n] = std::sin(t.yaw[base + n]);
+  }
+  const int blocks = static_cast<int>(block_begin_.size()) - 1;
+  const double* x = &t.x[base];
+  const double* y = &t.y[base];
+  for (int q = q0; q < q1; ++q) {
+    double x0 = x[block_begin_[q]], x1 = x0, y0 = y[block_begin_[q]], y1 = y0;
+    for (int n = block_begin_[q] + 1; n < block_begin_[q + 1]; ++n) {
+      x0 = std::min(x0, x[n]);
+      x1 = std::max(x1, x[n]);
+      y0 = std::min(y0, y[n]);
+      y1 = std::max(y1, y[n]);
+    }
+    const size_t k = static_cast<size_t>(tr) * blocks + q;
+    b->cx[k] = 0.5 * (x0 + x1);
+    b->cy[k] = 0.5 * (y0 + y1);
+    b->r[k] = 0.5 * std::hypot(x1 - x0, y1 - y0);
+  }
+}
+
+void CpuBackend::ComputeBlockBounds(const TrajectoryStore& t, BlockBounds* b) const {
+  const int blocks = static_cast<int>(block_begin_.size()) - 1;
+  const size_t n = static_cast<size_t>(t.trajectories) * blocks;
+  b->cx.resize(n);
+  b->cy.resize(n);
+  b->r.resize(n);
+}
+
 void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   const int steps = pb.Steps();
+  const core::HypothesisSet& ego = pb.ego;
   ego_.Resize(pb.EgoTrajectories(), steps);
   co_.Resize(pb.CoTrajectories(), steps);
-  const int n_ego = pb.EgoTrajectories();
-  // One index space over ego then CO hypotheses.
-  internal::ParallelFor(n_ego + pb.CoTrajectories(), threads_, [&](int begin, int end) {
-    for (int g = begin; g < end; ++g) {
-      if (g < n_ego) {
-        const size_t at = ego_.Offset(g);
-        core::SimulateHypothesis(pb.ego, pb.sim, g / pb.ego.n_paths, g % pb.ego.n_paths,
-                                 &ego_.x[at], &ego_.y[at], &ego_.yaw[at]);
-      } else {
-        const int j = g - n_ego;
-        const int o = pb.co_object_of[j];
-        const core::HypothesisSet& h = pb.cos[o];
-        const int t = j - pb.co_offset[o];
-        const size_t at = co_.Offset(j);
-        core::SimulateHypothesis(h, pb.sim, t / h.n_paths, t % h.n_paths, &co_.x[at], &co_.y[at],
-                                 &co_.yaw[at]);
+  core::InstantBoundaries(ego, pb.sim, boundary_);
+  const int K = ego.n_instants, L = ego.n_lateral;
+
+  // Blocks never cross a span boundary, so a node's span is a whole number of blocks.
+  block_begin_.clear();
+  phase_block_.clear();
+  for (int k = 0; k < K; ++k) {
+    phase_block_.push_back(static_cast<int>(block_begin_.size()));
+    for (int n = boundary_[k]; n < boundary_[k + 1]; n += kBlockSteps) block_begin_.push_back(n);
+  }
+  phase_block_.push_back(static_cast<int>(block_begin_.size()));
+  block_begin_.push_back(steps);
+  const int blocks = static_cast<int>(block_begin_.size()) - 1;
+  ComputeBlockBounds(ego_, &ego_bounds_);
+  ComputeBlockBounds(co_, &co_bounds_);
+  ego_cos_.resize(ego_.yaw.size());
+  ego_sin_.resize(ego_.yaw.size());
+  co_cos_.resize(co_.yaw.size());
+  co_sin_.resize(co_.yaw.size());
+
+  // Ego: one task per (profile, first section); each walks its subtree of the section tree,
+  // simulating every node's span once on its representative path (with its cos/sin and block
+  // bounds), then copying that span to the node's other paths.
+  auto node = [&](auto&& self, int profile, int k, int group, core::SimulationState st) -> void {
+    if (k >= core::kMaxSampleInstants) return;  // never: K <= kMaxSampleInstants
+    const int width = Power(L, K - 1 - k);  // paths below this node
+    const int first = profile * ego.n_paths + group * width;
+    const size_t at = ego_.Offset(first);
+    const int n0 = boundary_[k], n1 = boundary_[k + 1];
+    core::SimulateVehicleSteps(ego, pb.sim, profile, group * width, n0, n1, &st, &ego_.x[at],
+                               &ego_.y[at], &ego_.yaw[at]);
+    FinishSpan(ego_, &ego_cos_, &ego_sin_, &ego_bounds_, first, n0, n1, phase_block_[k],
+               phase_block_[k + 1]);
+    const size_t span = n1 - n0;
+    const size_t qspan = phase_block_[k + 1] - phase_block_[k];
+    const size_t qfrom = static_cast<size_t>(first) * blocks + phase_block_[k];
+    for (int p = 1; p < width; ++p) {
+      const size_t to = ego_.Offset(first + p) + n0, from = at + n0;
+      for (std::vector<double>* v : {&ego_.x, &ego_.y, &ego_.yaw, &ego_cos_, &ego_sin_}) {
+        std::memcpy(v->data() + to, v->data() + from, span * sizeof(double));
+      }
+      const size_t qto = static_cast<size_t>(first + p) * blocks + phase_block_[k];
+      for (std::vector<double>* v : {&ego_bounds_.cx, &ego_bounds_.cy, &ego_bounds_.r}) {
+        std::memcpy(v->data() + qto, v->data() + qfrom, qspan * sizeof(double));
+      }
+    }
+    if (k + 1 < K) {
+      for (int c = 0; c < L; ++c) self(self, profile, k + 1, group * L + c, st);
+    }
+  };
+  const core::SimulationState start = core::InitialSimulationState(ego, pb.sim);
+  internal::ParallelFor(ego.n_profiles * L, threads_, [&](int begin, int end) {
+    for (int task = begin; task < end; ++task) node(node, task / L, 0, task % L, start);
+  });
+  // Collision objects: no shared prefixes (each keeps one lateral sample throughout).
+  internal::ParallelFor(pb.CoTrajectories(), threads_, [&](int begin, int end) {
+    for (int j = begin; j < end; ++j) {
+      const int o = pb.co_object_of[j];
+      const core::HypothesisSet& h = pb.cos[o];
+      const int t = j - pb.co_offset[o];
+      const size_t at = co_.Offset(j);
+      core::SimulateHypothesis(h, pb.sim, t / h.n_paths, t % h.n_paths, &co_.x[at], &co_.y[at],
+                               &co_.yaw[at]);
+      FinishSpan(co_, &co_cos_, &co_sin_, &co_bounds_, j, 0, steps, 0, blocks);
+    }
+  });
+
+  // Swept bounds of the tree nodes (post-order: a node's span plus its children's bounds).
+  node_offset_[0] = 0;
+  for (int k = 0; k < K; ++k) node_offset_[k + 1] = node_offset_[k] + Power(L, k + 1);
+  const int nodes = node_offset_[K];
+  const size_t n_node_bounds = static_cast<size_t>(ego.n_profiles) * nodes;
+  node_bounds_.cx.resize(n_node_bounds);
+  node_bounds_.cy.resize(n_node_bounds);
+  node_bounds_.r.resize(n_node_bounds);
+  auto sweep = [&](auto&& self, int profile, int k, int group) -> Aabb {
+    Aabb box;
+    if (k >= core::kMaxSampleInstants) return box;  // never: K <= kMaxSampleInstants
+    const int width = Power(L, K - 1 - k);
+    const size_t at = ego_.Offset(profile * ego.n_paths + group * width);
+    for (int n = boundary_[k]; n < boundary_[k + 1]; ++n) box.Add(ego_.x[at + n], ego_.y[at + n]);
+    if (k + 1 < K) {
+      for (int c = 0; c < L; ++c) box.Add(self(self, profile, k + 1, group * L + c));
+    }
+    StoreCircle(box, static_cast<size_t>(profile) * nodes + node_offset_[k] + group, &node_bounds_.cx,
+                &node_bounds_.cy, &node_bounds_.r);
+    return box;
+  };
+  internal::ParallelFor(ego.n_profiles * L, threads_, [&](int begin, int end) {
+    for (int task = begin; task < end; ++task) sweep(sweep, task / L, 0, task % L);
+  });
+  const size_t n_tail = static_cast<size_t>(pb.CoTrajectories()) * K;
+  co_tail_.cx.resize(n_tail);
+  co_tail_.cy.resize(n_tail);
+  co_tail_.r.resize(n_tail);
+  internal::ParallelFor(pb.CoTrajectories(), threads_, [&](int begin, int end) {
+    for (int j = begin; j < end; ++j) {
+      Aabb box;
+      const size_t at = co_.Offset(j);
+      for (int k = K - 1; k >= 0; --k) {  // tails grow backwards from the horizon
+        for (int n = boundary_[k]; n < boundary_[k + 1]; ++n) box.Add(co_.x[at + n], co_.y[at + n]);
+        StoreCircle(box, static_cast<size_t>(j) * K + k, &co_tail_.cx, &co_tail_.cy, &co_tail_.r);
       }
     }
   });
-  CacheTrig(ego_, &ego_cos_, &ego_sin_, threads_);
-  CacheTrig(co_, &co_cos_, &co_sin_, threads_);
 }
 
 void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
                                      std::vector<std::int16_t>* first_step) {
-  const int n_ego = pb.EgoTrajectories(), n_co = pb.CoTrajectories(), steps = pb.Steps();
+  const int n_ego = pb.EgoTrajectories(), n_co = pb.CoTrajectories();
   first_step->assign(static_cast<size_t>(n_ego) * n_co, 0);
-  const double ego_hl = pb.ego.half_length, ego_hw = pb.ego.half_width;
+  const core::HypothesisSet& ego = pb.ego;
+  const int K = ego.n_instants, L = ego.n_lateral;
+  const int blocks = static_cast<int>(block_begin_.size()) - 1;
+  const double ego_hl = ego.half_length, ego_hw = ego.half_width;
   const double ego_r = core::BoundingRadius(ego_hl, ego_hw);
-  internal::ParallelFor(n_ego, threads_, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) {
-      const size_t ei = ego_.Offset(i);
-      const double* ex = &ego_.x[ei];
-      const double* ey = &ego_.y[ei];
-      const double* ec = &ego_cos_[ei];
-      const double* es = &ego_sin_[ei];
-      std::int16_t* row = first_step->data() + static_cast<size_t>(i) * n_co;
-      for (int j = 0; j < n_co; ++j) {
-        const core::HypothesisSet& co = pb.cos[pb.co_object_of[j]];
-        // Centres farther apart than the sum of the bounding radii cannot overlap; the small
-        // margin keeps exactly touching boxes for the exact test.
-        const double reach = ego_r + core::BoundingRadius(co.half_length, co.half_width) + 1e-9;
-        const double reach2 = reach * reach;
-        const size_t cj = co_.Offset(j);
-        const double* cx = &co_.x[cj];
-        const double* cy = &co_.y[cj];
-        for (int n = 0; n < steps; ++n) {
-          const double dx = cx[n] - ex[n], dy = cy[n] - ey[n];
-          if (dx * dx + dy * dy > reach2) continue;
-          const core::OrientedBox<double> a{ex[n], ey[n], ec[n], es[n], ego_hl, ego_hw};
-          const core::OrientedBox<double> b{cx[n], cy[n], co_cos_[cj + n], co_sin_[cj + n],
-                                            co.half_length, co.half_width};
-          if (core::BoxesOverlap(a, b)) {
-            row[j] = static_cast<std::int16_t>(n + 1);
-            break;
-          }
-        }
+
+  // First colliding step (1-based) of ego trajectory i and CO trajectory j within span k.
+  auto span_hit = [&](int i, int j, int k, double reach) -> int {
+    const size_t ei = ego_.Offset(i), cj = co_.Offset(j);
+    const size_t eb = static_cast<size_t>(i) * blocks, cb = static_cast<size_t>(j) * blocks;
+    const core::HypothesisSet& co = pb.cos[pb.co_object_of[j]];
+    const double reach2 = reach * reach;
+    for (int q = phase_block_[k]; q < phase_block_[k + 1]; ++q) {
+      const double bx = ego_bounds_.cx[eb + q] - co_bounds_.cx[cb + q];
+      const double by = ego_bounds_.cy[eb + q] - co_bounds_.cy[cb + q];
+      const double br = ego_bounds_.r[eb + q] + co_bounds_.r[cb + q] + reach;
+      if (bx * bx + by * by > br * br) continue;  // the whole block is apart
+      for (int n = block_begin_[q]; n < block_begin_[q + 1]; ++n) {
+        const double dx = co_.x[cj + n] - ego_.x[ei + n], dy = co_.y[cj + n] - ego_.y[ei + n];
+        if (dx * dx + dy * dy > reach2) continue;
+        const core::OrientedBox<double> a{ego_.x[ei + n], ego_.y[ei + n], ego_cos_[ei + n],
+                                          ego_sin_[ei + n], ego_hl, ego_hw};
+        const core::OrientedBox<double> b{co_.x[cj + n], co_.y[cj + n], co_cos_[cj + n],
+                                          co_sin_[cj + n], co.half_length, co.half_width};
+        if (core::BoxesOverlap(a, b)) return n + 1;
       }
+    }
+    return 0;
+  };
+
+  // One task per (ego profile, CO trajectory): walk the section tree.
+  internal::ParallelFor(ego.n_profiles * n_co, threads_, [&](int begin, int end) {
+    for (int task = begin; task < end; ++task) {
+      const int profile = task / n_co, j = task % n_co;
+      const core::HypothesisSet& co = pb.cos[pb.co_object_of[j]];
+      // Centres farther apart than the sum of the bounding radii cannot overlap; the small
+      // margin keeps exactly touching boxes for the exact test.
+      const double reach = ego_r + core::BoundingRadius(co.half_length, co.half_width) + 1e-9;
+      const int nodes = node_offset_[K];
+      auto walk = [&](auto&& self, int k, int group) -> void {
+        if (k >= core::kMaxSampleInstants) return;  // never: K <= kMaxSampleInstants
+        // Swept bounds: nothing below this node comes near this CO trajectory.
+        const size_t nb = static_cast<size_t>(profile) * nodes + node_offset_[k] + group;
+        const size_t tb = static_cast<size_t>(j) * K + k;
+        const double sx = node_bounds_.cx[nb] - co_tail_.cx[tb], sy = node_bounds_.cy[nb] - co_tail_.cy[tb];
+        const double sr = node_bounds_.r[nb] + co_tail_.r[tb] + reach;
+        if (sx * sx + sy * sy > sr * sr) return;
+        const int width = Power(L, K - 1 - k);
+        const int first = profile * ego.n_paths + group * width;
+        const int hit = span_hit(first, j, k, reach);
+        if (hit > 0) {
+          for (int p = 0; p < width; ++p) {
+            (*first_step)[static_cast<size_t>(first + p) * n_co + j] = static_cast<std::int16_t>(hit);
+          }
+          return;
+        }
+        if (k + 1 < K) {
+          for (int c = 0; c < L; ++c) self(self, k + 1, group * L + c);
+        }
+      };
+      for (int g = 0; g < L; ++g) walk(walk, 0, g);
     }
   });
 }

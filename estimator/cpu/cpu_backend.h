@@ -1,8 +1,23 @@
 #pragma once
-// The CPU fast path: the same core functions as the reference, with threads over hypotheses and
-// ego trajectories, cos/sin of every pose computed once, a bounding-circle rejection before the
-// exact separating-axis test (it can only skip pairs that cannot overlap), and an early exit at
-// a pair's first collision. Gives the same pair matrix as the reference, bit for bit.
+// The CPU fast path: the same core functions as the reference, iterated so that no work is
+// done twice and far-apart pairs are skipped cheaply; it must give the reference's pair matrix
+// bit for bit (tests/estimator/backends_agree_test.cc).
+//  - Ego paths that share their first path sections share the simulation of that prefix: the
+//    section tree (7 -> 49 -> 343 paths) is simulated once per node.
+//  - Collision recognition walks the same tree for each (ego profile, CO trajectory): a node's
+//    span is checked once on its representative path; a hit there is every descendant's first
+//    collision (their poses are identical up to it, and no earlier span hit); otherwise the
+//    children are checked on their spans.
+//  - Each span is split into blocks of a few steps with a bounding circle per trajectory and
+//    block: when two blocks' circles (grown by the boxes' bounding radii) are apart, the block
+//    is skipped; otherwise each step gets a bounding-circle test, then the exact SAT test.
+//  - Swept bounds prune whole subtrees: each tree node has a circle around every pose of all
+//    its descendant paths from its span to the horizon, each CO trajectory one around its
+//    poses over the same steps; when they are apart, no descendant can collide.
+//  - cos/sin of every pose computed once; threads over independent tree roots.
+#include <vector>
+
+#include "core/hypothesis_set.h"
 #include "src/backend.h"
 
 namespace criticality {
@@ -17,11 +32,34 @@ class CpuBackend final : public EstimatorBackend {
   const internal::TrajectoryStore& EgoTrajectories() const override { return ego_; }
   const internal::TrajectoryStore& CoTrajectories() const override { return co_; }
 
+  /** Steps per collision block (bounding circles). */
+  static constexpr int kBlockSteps = 5;
+
  private:
+  // Bounding circles of the centres of every trajectory over every block.
+  struct BlockBounds {
+    std::vector<double> cx, cy, r;  ///< [trajectory * blocks + block]
+  };
+  void ComputeBlockBounds(const internal::TrajectoryStore& t, BlockBounds* b) const;
+  // cos/sin of steps [n0, n1) and bounds of blocks [q0, q1) of one trajectory.
+  void FinishSpan(const internal::TrajectoryStore& t, std::vector<double>* c, std::vector<double>* s,
+                  BlockBounds* b, int trajectory, int n0, int n1, int q0, int q1) const;
+
   int threads_;
   internal::TrajectoryStore ego_;
   internal::TrajectoryStore co_;
   std::vector<double> ego_cos_, ego_sin_, co_cos_, co_sin_;
+  // Step partition: instant k spans steps [boundary_[k], boundary_[k+1]); blocks split each
+  // span; block_begin_[q] is block q's first step, phase_block_[k] the first block of span k.
+  int boundary_[core::kMaxSampleInstants + 1]{};
+  std::vector<int> block_begin_;
+  std::vector<int> phase_block_;
+  BlockBounds ego_bounds_, co_bounds_;
+  // Swept bounds: node_bounds_ per (profile, tree node) (node index: the nodes of instant k
+  // follow those of instant k-1, k's group g at node_offset_[k] + g); co_tail_ per (CO
+  // trajectory, instant k) over steps [boundary_[k], n_steps).
+  BlockBounds node_bounds_, co_tail_;
+  int node_offset_[core::kMaxSampleInstants + 1]{};
 };
 
 }  // namespace criticality

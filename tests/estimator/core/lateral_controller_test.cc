@@ -50,7 +50,9 @@ TEST(LateralController, BringsTheVehicleToItsLaneCentre) {
       ASSERT_GE(y[n], y[n - 1] - 1e-6) << "not monotone at v=" << v << " step " << n;
       ASSERT_LT(y[n], 1.15) << "overshoot at v=" << v;
     }
-    if (v >= 15.0) EXPECT_NEAR(y[399], 1.0, 0.06) << "after 8 s at v=" << v;
+    if (v >= 15.0) {
+      EXPECT_NEAR(y[399], 1.0, 0.06) << "after 8 s at v=" << v;
+    }
   }
 }
 

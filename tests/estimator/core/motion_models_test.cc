@@ -137,3 +137,13 @@ TEST(TwoTrack, FrictionCircleLimitsCombinedForce) {
 
 }  // namespace
 }  // namespace criticality::core
+
+namespace criticality::core {
+namespace {
+TEST(TwoTrack, MagicFormulaStiffnessPeaksAtThePeakSlip) {
+  EXPECT_NEAR(kMagicFormulaB, std::tan(kPi / (2.0 * kMagicFormulaShapeC)) / kMagicFormulaPeakSlip, 1e-12);
+  EXPECT_NEAR(LongitudinalForceFactor(kMagicFormulaPeakSlip), 1.0, 1e-12);
+  EXPECT_LT(LongitudinalForceFactor(0.9 * kMagicFormulaPeakSlip), 1.0);
+}
+}  // namespace
+}  // namespace criticality::core
