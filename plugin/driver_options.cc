@@ -68,7 +68,7 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
       ("brake-threshold", po::value(&o.brake_threshold)->default_value(o.brake_threshold), "p_cra that triggers braking (--act brake)");
   po::options_description est("Estimator");
   est.add_options()
-      ("backend", po::value(&backend)->default_value(backend), "reference | cpu")
+      ("backend", po::value(&backend)->default_value(backend), "reference | cpu | cuda | auto (cuda when a GPU is usable, else cpu)")
       ("threads", po::value(&o.estimator.threads)->default_value(0), "estimator threads (0 = all cores)")
       ("profiles", po::value(&o.params.profiles)->default_value(o.params.profiles), "acceleration/slip profiles per object (paper: 6 or 5)")
       ("own-lane-samples", po::value(&o.params.own_lane_samples)->default_value(o.params.own_lane_samples),

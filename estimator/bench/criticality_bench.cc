@@ -31,7 +31,29 @@ struct Options {
   int warmup{1};
   bool json{false};
   bool report{false};
+  bool compare{false};
+  int cos{-1};
 };
+
+struct Timing {
+  Result last;
+  std::vector<double> total, traj, coll, risk;
+};
+
+Timing TimeBackend(const Scene& scene, const Params& params, EstimatorOptions eopt, int warmup,
+                   int repeat) {
+  Estimator estimator(params, eopt);
+  Timing t;
+  for (int k = 0; k < warmup; ++k) estimator.Estimate(scene);
+  for (int k = 0; k < repeat; ++k) {
+    t.last = estimator.Estimate(scene);
+    t.total.push_back(t.last.times.total_ms);
+    t.traj.push_back(t.last.times.trajectory_ms);
+    t.coll.push_back(t.last.times.collision_ms);
+    t.risk.push_back(t.last.times.risk_ms);
+  }
+  return t;
+}
 
 std::string JsonEscape(const std::string& s) {
   std::string out;
@@ -119,6 +141,61 @@ void PrintReport(const Scene& scene, const Params& params, const Result& r) {
   std::printf("  (lateral samples count from the right: 0-1 right lane, 2-4 ego lane, 5-6 left lane)\n");
 }
 
+// Every backend on the same scene, one after the other in this process.
+int Compare(const Scene& scene, const Params& params, const Options& opt) {
+  std::vector<Backend> backends{Backend::kReference, Backend::kCpu};
+  if (CudaUsable(nullptr)) backends.push_back(Backend::kCuda);
+  std::vector<Timing> runs;
+  std::vector<int> threads;
+  for (Backend b : backends) {
+    EstimatorOptions eopt;
+    eopt.backend = b;
+    eopt.threads = opt.threads;
+    eopt.keep_pair_matrix = true;
+    // The reference is slow: fewer repetitions keep --compare usable on S2.
+    const int repeat = b == Backend::kReference ? std::max(1, std::min(opt.repeat, 3)) : opt.repeat;
+    runs.push_back(TimeBackend(scene, params, eopt, b == Backend::kReference ? 0 : opt.warmup, repeat));
+    threads.push_back(b == Backend::kReference ? 1 : Estimator(params, eopt).threads());
+  }
+  const Result& ref = runs[0].last;
+  const WorkCounts& c = ref.counts;
+  std::printf("scene %s, %d profiles: %d ego x %d CO trajectories x %d steps = %llu pose combinations\n",
+              opt.scene.c_str(), opt.profiles, c.ego_trajectories, c.co_trajectories, c.time_steps,
+              static_cast<unsigned long long>(c.pose_combinations));
+  std::printf("%-10s %7s %10s %10s %14s %9s  %s\n", "backend", "threads", "median ms", "min ms",
+              "poses/s", "x ref", "agreement with the reference");
+  const double ref_median = Median(runs[0].total);
+  std::string json = "{\"scene\":\"" + JsonEscape(opt.scene) + "\",\"profiles\":" +
+                     std::to_string(opt.profiles) + ",\"pose_combinations\":" +
+                     std::to_string(c.pose_combinations) + ",\"backends\":[";
+  for (size_t k = 0; k < backends.size(); ++k) {
+    const Result& r = runs[k].last;
+    const double median = Median(runs[k].total);
+    const double min = *std::min_element(runs[k].total.begin(), runs[k].total.end());
+    size_t differing = 0;
+    for (size_t q = 0; q < r.first_collision_step.size(); ++q) {
+      differing += r.first_collision_step[q] != ref.first_collision_step[q];
+    }
+    const double dp = std::fabs(r.p_collision - ref.p_collision);
+    char agree[160];
+    std::snprintf(agree, sizeof agree, "%zu of %zu pairs differ, |dp_cra| = %.1e", differing,
+                  r.first_collision_step.size(), dp);
+    std::printf("%-10s %7d %10.3f %10.3f %14.3e %9.1f  %s\n", BackendName(backends[k]).c_str(),
+                threads[k], median, min, c.pose_combinations / (median * 1e-3), ref_median / median,
+                agree);
+    char item[400];
+    std::snprintf(item, sizeof item,
+                  "%s{\"backend\":\"%s\",\"threads\":%d,\"median_ms\":%.6f,\"min_ms\":%.6f,"
+                  "\"speedup_vs_reference\":%.3f,\"differing_pairs\":%zu,\"p_collision\":%.17g}",
+                  k ? "," : "", BackendName(backends[k]).c_str(), threads[k], median, min,
+                  ref_median / median, differing, r.p_collision);
+    json += item;
+  }
+  json += "]}";
+  if (opt.json) std::printf("%s\n", json.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -135,12 +212,17 @@ int main(int argc, char** argv) {
       ("profiles", po::value(&opt.profiles)->default_value(opt.profiles),
        "acceleration/slip profiles per object (paper: 6 or 5)")
       ("backend", po::value(&opt.backend)->default_value(opt.backend),
-       "reference (plain literal algorithm, one thread) or cpu (fast path)")
+       "reference (plain literal algorithm, one thread), cpu (fast path), cuda (GPU) or auto (cuda when usable, else cpu)")
       ("threads", po::value(&opt.threads)->default_value(opt.threads),
        "worker threads for the cpu backend (0 = all hardware threads)")
       ("repeat", po::value(&opt.repeat)->default_value(opt.repeat), "timed estimates")
       ("warmup", po::value(&opt.warmup)->default_value(opt.warmup), "untimed estimates first")
       ("json", po::bool_switch(&opt.json), "print one JSON object as the last line of stdout")
+      ("compare", po::bool_switch(&opt.compare),
+       "run every available backend (reference, cpu, cuda) on the same scene in this process and "
+       "print a table: times, pose combinations per second, ratio to the reference, agreement")
+      ("cos", po::value(&opt.cos),
+       "instead of --scene: the scaling scene with this many other vehicles (e.g. 1 3 10 30 100)")
       ("report", po::bool_switch(&opt.report),
        "print a readable summary of the result (per-object shares, collision times, escape routes)");
   try {
@@ -159,8 +241,18 @@ int main(int argc, char** argv) {
     EstimatorOptions eopt;
     eopt.backend = ParseBackend(opt.backend);
     eopt.threads = opt.threads;
-    const Scene scene = opt.scene_file.empty() ? bench::PaperScene(opt.scene) : ReadSceneFile(opt.scene_file);
-    if (!opt.scene_file.empty()) opt.scene = opt.scene_file;
+    if (opt.cos > 100000) throw InputError("--cos = " + std::to_string(opt.cos) + ": at most 100000");
+    Scene scene;
+    if (!opt.scene_file.empty()) {
+      scene = ReadSceneFile(opt.scene_file);
+      opt.scene = opt.scene_file;
+    } else if (opt.cos >= 0) {
+      scene = bench::ScalingScene(opt.cos);
+      opt.scene = "cos" + std::to_string(opt.cos);
+    } else {
+      scene = bench::PaperScene(opt.scene);
+    }
+    if (opt.compare) return Compare(scene, params, opt);
     Estimator estimator(params, eopt);
 
     for (int k = 0; k < opt.warmup; ++k) estimator.Estimate(scene);

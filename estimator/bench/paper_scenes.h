@@ -21,6 +21,11 @@ LaneSet StraightThreeLanes(double lane_width = kLaneWidth);
 Scene PaperSceneS1();
 /** S2: ego + 10 COs. */
 Scene PaperSceneS2();
+/** The scaling family: the ego and `n` COs on the same road, spread over the three lanes at
+ *  20-30 m/s, ahead and behind (n = 3 and 10 are not S1/S2: these are placed by a rule so
+ *  that any n works). Cost should grow linearly with n. */
+Scene ScalingScene(int n);
+
 /** "S1" or "S2" (case-insensitive); throws InputError naming the accepted values. */
 Scene PaperScene(const std::string& name);
 

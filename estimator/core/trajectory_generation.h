@@ -3,6 +3,7 @@
 // object for n_steps steps of tau and writes its poses (scene frame) at steps 1..n_steps.
 // The same function runs on the CPU and, compiled by nvcc, on the GPU.
 #include <cmath>
+#include <cstddef>
 
 #include "core/euler_integration.h"
 #include "core/geometry.h"
@@ -50,18 +51,21 @@ CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h, const Sim
 }
 
 /** Advances a VEHICLE hypothesis (profile, path) over steps [n_begin, n_end) from `st`,
- *  writing the poses (scene frame) of those steps to x[n], y[n], yaw[n]. For a shared prefix,
- *  any path of the group gives the same sections (SectionOfPath) up to the group's instant. */
+ *  writing the poses (scene frame) of those steps to x[n * stride], y[..], yaw[..]. For a
+ *  shared prefix, any path of the group gives the same sections (SectionOfPath) up to the
+ *  group's instant. The stride lets the GPU store poses step-major. */
 CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig& cfg, int profile,
                                   int path, int n_begin, int n_end, SimulationState* st, double* x,
-                                  double* y, double* yaw) {
+                                  double* y, double* yaw, int stride = 1) {
   const double tau = cfg.tau;
   const double target = h.profile_target[profile];
   const double c0 = std::cos(h.X_WL.yaw), s0 = std::sin(h.X_WL.yaw);
   MotionState& s = st->s;
   for (int n = n_begin; n < n_end; ++n) {
     const double t = n * tau;
-    while (st->instant < h.n_instants - 1 && t >= h.instant_time[st->instant]) ++st->instant;
+    int k = st->instant;  // explicit bounds keep the compiler's array-bounds check quiet
+    while (k >= 0 && k < h.n_instants - 1 && k < kMaxSampleInstants - 1 && t >= h.instant_time[k]) ++k;
+    st->instant = k;
     const Parabola& section = h.section[st->instant][SectionOfPath(h, path, st->instant)];
     st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau);
     const double longitudinal = RampedValue(t, h.profile_start, target, h.latency, h.rate);
@@ -78,9 +82,10 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
     EulerStep(d, tau, &s);
     if (s.v < 0.0) s.v = 0.0;  // rounding guard
     // Local frame -> scene frame (LocalToWorld with the rotation hoisted out of the loop).
-    x[n] = h.X_WL.x + c0 * s.x - s0 * s.y;
-    y[n] = h.X_WL.y + s0 * s.x + c0 * s.y;
-    yaw[n] = h.X_WL.yaw + s.yaw;
+    const size_t at = static_cast<size_t>(n) * stride;
+    x[at] = h.X_WL.x + c0 * s.x - s0 * s.y;
+    y[at] = h.X_WL.y + s0 * s.x + c0 * s.y;
+    yaw[at] = h.X_WL.yaw + s.yaw;
   }
 }
 
@@ -96,23 +101,24 @@ CRIT_HD void InstantBoundaries(const HypothesisSet& h, const SimulationConfig& c
   for (int k = instant + 1; k <= h.n_instants; ++k) boundary[k] = cfg.n_steps;
 }
 
-/** Simulates hypothesis (profile, path) of `h`; writes n_steps poses to x[], y[], yaw[]. */
+/** Simulates hypothesis (profile, path) of `h`; writes n_steps poses to x[n * stride], ... */
 CRIT_HD void SimulateHypothesis(const HypothesisSet& h, const SimulationConfig& cfg, int profile,
-                                int path, double* x, double* y, double* yaw) {
+                                int path, double* x, double* y, double* yaw, int stride = 1) {
   if (h.model == MotionModelKind::kPedestrian) {
     const double heading = h.heading[path];
     const double target = h.profile_target[profile];
     double px = h.X_WL.x, py = h.X_WL.y, v = Clamp(h.v0, 0.0, h.max_speed);
     for (int n = 0; n < cfg.n_steps; ++n) {
       PedestrianStep(heading, target, h.max_speed, cfg.tau, &px, &py, &v);
-      x[n] = px;
-      y[n] = py;
-      yaw[n] = heading;
+      const size_t at = static_cast<size_t>(n) * stride;
+      x[at] = px;
+      y[at] = py;
+      yaw[at] = heading;
     }
     return;
   }
   SimulationState st = InitialSimulationState(h, cfg);
-  SimulateVehicleSteps(h, cfg, profile, path, 0, cfg.n_steps, &st, x, y, yaw);
+  SimulateVehicleSteps(h, cfg, profile, path, 0, cfg.n_steps, &st, x, y, yaw, stride);
 }
 
 }  // namespace criticality::core

@@ -1,10 +1,12 @@
 #pragma once
-// What a backend does: trajectory generation and collision recognition (the two modules whose
-// iteration differs between backends). Street data processing and risk assessment are shared
-// host code; risk assessment is told how many threads it may use.
+// What a backend does: trajectory generation, collision recognition and, by default on the
+// host, risk assessment (Run). Street data processing and hypothesis set-up are shared host
+// code (BuildProblem). The CUDA backend overrides Run to keep all three on the device.
 #include <cstdint>
 #include <vector>
 
+#include "criticality/params.h"
+#include "criticality/result.h"
 #include "src/problem.h"
 #include "src/trajectory_store.h"
 
@@ -22,6 +24,10 @@ class EstimatorBackend {
   /** The last generated trajectories (for tests and tools). */
   virtual const internal::TrajectoryStore& EgoTrajectories() const = 0;
   virtual const internal::TrajectoryStore& CoTrajectories() const = 0;
+  /** Trajectories, collisions and risk of `problem` into `result`, with module times.
+   *  Default: GenerateTrajectories, RecognizeCollisions, then the host risk assessment. */
+  virtual void Run(const internal::Problem& problem, const Params& params, bool keep_pair_matrix,
+                   Result* result);
 };
 
 }  // namespace criticality

@@ -9,6 +9,13 @@
 #include "src/problem.h"
 #include "src/risk_assessment.h"
 
+#ifdef CRIT_WITH_CUDA
+#include "cuda/cuda_backend.h"
+#include "cuda/device.cuh"
+#endif
+
+#include <cstdio>
+
 namespace criticality {
 namespace {
 
@@ -21,15 +28,43 @@ double MsSince(std::chrono::steady_clock::time_point t0) {
 Backend ParseBackend(const std::string& name) {
   if (name == "reference") return Backend::kReference;
   if (name == "cpu") return Backend::kCpu;
-  throw InputError("backend = '" + name + "': unknown; use reference or cpu");
+  if (name == "cuda") return Backend::kCuda;
+  if (name == "auto") return Backend::kAuto;
+  throw InputError("backend = '" + name + "': unknown; use reference, cpu, cuda or auto");
 }
 
 std::string BackendName(Backend backend) {
   switch (backend) {
     case Backend::kReference: return "reference";
     case Backend::kCpu: return "cpu";
+    case Backend::kCuda: return "cuda";
+    case Backend::kAuto: return "auto";
   }
   return "unknown";
+}
+
+bool CudaUsable(std::string* why) {
+#ifdef CRIT_WITH_CUDA
+  return cuda::DeviceAvailable(why);
+#else
+  if (why) *why = "this build has no CUDA (nvcc was not found when it was configured)";
+  return false;
+#endif
+}
+
+void EstimatorBackend::Run(const internal::Problem& problem, const Params& params,
+                           bool keep_pair_matrix, Result* result) {
+  auto t = std::chrono::steady_clock::now();
+  GenerateTrajectories(problem);
+  result->times.trajectory_ms = MsSince(t);
+  t = std::chrono::steady_clock::now();
+  std::vector<std::int16_t> first_step;
+  RecognizeCollisions(problem, &first_step);
+  result->times.collision_ms = MsSince(t);
+  t = std::chrono::steady_clock::now();
+  internal::AssessRisk(problem, params, first_step.data(), Threads(), result);
+  result->times.risk_ms = MsSince(t);
+  if (keep_pair_matrix) result->first_collision_step = std::move(first_step);
 }
 
 Estimator::Estimator(const Params& params, const EstimatorOptions& options)
@@ -39,9 +74,27 @@ Estimator::Estimator(const Params& params, const EstimatorOptions& options)
     throw InputError("options.threads = " + std::to_string(options_.threads) +
                      ": must be >= 0 (0 = all hardware threads)");
   }
+  std::string why;
+  if (options_.backend == Backend::kAuto) {
+    if (CudaUsable(&why)) {
+      options_.backend = Backend::kCuda;
+    } else {
+      std::fprintf(stderr, "criticality: backend auto: %s; using the cpu backend\n", why.c_str());
+      options_.backend = Backend::kCpu;
+    }
+  }
   switch (options_.backend) {
     case Backend::kReference: backend_ = std::make_unique<ReferenceBackend>(); break;
-    case Backend::kCpu: backend_ = std::make_unique<CpuBackend>(options_.threads); break;
+    case Backend::kCpu:
+    case Backend::kAuto: backend_ = std::make_unique<CpuBackend>(options_.threads); break;
+    case Backend::kCuda:
+      if (!CudaUsable(&why)) {
+        throw InputError("backend cuda: " + why + "; use --backend cpu or auto");
+      }
+#ifdef CRIT_WITH_CUDA
+      backend_ = cuda::MakeCudaBackend();
+#endif
+      break;
   }
 }
 
@@ -55,23 +108,17 @@ Result Estimator::Estimate(const Scene& scene) {
   const internal::Problem problem = internal::BuildProblem(scene, params_);
   result.times.street_ms = MsSince(t0);
 
-  auto t = std::chrono::steady_clock::now();
-  backend_->GenerateTrajectories(problem);
-  result.times.trajectory_ms = MsSince(t);
-
-  t = std::chrono::steady_clock::now();
-  std::vector<std::int16_t> first_step;
-  backend_->RecognizeCollisions(problem, &first_step);
-  result.times.collision_ms = MsSince(t);
-
-  t = std::chrono::steady_clock::now();
-  internal::AssessRisk(problem, params_, first_step.data(), backend_->Threads(), &result);
-  result.times.risk_ms = MsSince(t);
-
+  backend_->Run(problem, params_, options_.keep_pair_matrix, &result);
   result.counts = problem.counts;
-  if (options_.keep_pair_matrix) result.first_collision_step = std::move(first_step);
   result.times.total_ms = MsSince(t0);
   return result;
+}
+
+std::vector<Result> Estimator::EstimateBatch(const std::vector<Scene>& scenes) {
+  std::vector<Result> results;
+  results.reserve(scenes.size());
+  for (const Scene& scene : scenes) results.push_back(Estimate(scene));
+  return results;
 }
 
 }  // namespace criticality

@@ -68,7 +68,13 @@ void AssessRisk(const Problem& pb, const Params& params, const std::int16_t* fir
   result->ego_probability = pb.ego_probability;
   result->ego_collision_probability = ego_col;
 
-  // Escape routes: ego hypotheses that collide with no CO hypothesis, most probable first.
+  FillEscapeRoutes(pb, params, ego_hit, result);
+}
+
+void FillEscapeRoutes(const Problem& pb, const Params& params, const std::vector<char>& ego_hit,
+                      Result* result) {
+  const int n_ego = pb.EgoTrajectories();
+  // Ego hypotheses that collide with no CO hypothesis, most probable first.
   std::vector<int> free;
   for (int i = 0; i < n_ego; ++i) {
     if (!ego_hit[i]) free.push_back(i);

@@ -3,6 +3,7 @@
 // every ego x CO trajectory pair) and the hypothesis probabilities to p_cra, per-object
 // contributions, the first-collision-time distribution and escape routes.
 #include <cstdint>
+#include <vector>
 
 #include "criticality/params.h"
 #include "criticality/result.h"
@@ -15,5 +16,10 @@ namespace criticality::internal {
  *  Per-ego work runs on `threads` threads; sums are taken in ego order (deterministic). */
 void AssessRisk(const Problem& problem, const Params& params, const std::int16_t* first_step,
                 int threads, Result* result);
+
+/** Escape routes (collision-free ego hypotheses, most probable first) and their count, from
+ *  which ego hypotheses collide with any CO hypothesis. */
+void FillEscapeRoutes(const Problem& problem, const Params& params, const std::vector<char>& ego_hit,
+                      Result* result);
 
 }  // namespace criticality::internal

@@ -99,7 +99,9 @@ TEST(Estimator, ContributionsAndTimeDistributionAddUpToPcra) {
     for (int j = 0; j < r.counts.co_trajectories; ++j) {
       ASSERT_EQ(r.first_collision_step[static_cast<size_t>(i) * r.counts.co_trajectories + j], 0);
     }
-    if (k > 0) EXPECT_GE(r.escape_routes[k - 1].probability, r.escape_routes[k].probability);
+    if (k > 0) {
+      EXPECT_GE(r.escape_routes[k - 1].probability, r.escape_routes[k].probability);
+    }
   }
 }
 

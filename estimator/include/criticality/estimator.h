@@ -2,6 +2,7 @@
 /** @file The estimator: one object, several backends behind the same interface. */
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "criticality/params.h"
 #include "criticality/result.h"
@@ -13,12 +14,18 @@ namespace criticality {
 enum class Backend {
   kReference,  ///< the plain literal algorithm: one thread, every pair at every step, no pruning.
                ///< The judge of every faster path.
-  kCpu,        ///< CPU fast path: threads, bounding-circle rejection, early exit per pair.
+  kCpu,        ///< CPU fast path: shared path prefixes, swept bounds, threads, early exit.
+  kCuda,       ///< NVIDIA GPU: every hypothesis and pair in parallel (needs a usable device).
+  kAuto,       ///< kCuda when a device is usable, else kCpu (saying so once on stderr).
 };
 
-/** Parses "reference" / "cpu"; throws InputError naming the accepted values otherwise. */
+/** Parses "reference" / "cpu" / "cuda" / "auto"; throws InputError naming the accepted values. */
 Backend ParseBackend(const std::string& name);
 std::string BackendName(Backend backend);
+
+/** True when this build has CUDA and a device can be used; otherwise `why` says what is
+ *  missing (no CUDA in this build, no device, driver too old...). */
+bool CudaUsable(std::string* why);
 
 /** Execution settings (not part of the algorithm). */
 struct EstimatorOptions {
@@ -35,7 +42,8 @@ class EstimatorBackend;
  *  one Estimator per thread). */
 class Estimator {
  public:
-  /** @throws InputError when params are invalid. */
+  /** @throws InputError when params are invalid, or the cuda backend is asked for and no
+   *  device is usable (the message says why). */
   explicit Estimator(const Params& params, const EstimatorOptions& options = {});
   ~Estimator();
   Estimator(const Estimator&) = delete;
@@ -46,6 +54,10 @@ class Estimator {
    *  @throws InputError when the scene is invalid (the message names the field and value).
    *  @throws WorkloadError when the work would exceed Params::max_memory_bytes. */
   Result Estimate(const Scene& scene);
+
+  /** Estimates many scenes (e.g. every vehicle of a network as ego) with the same params and
+   *  backend, in order. Results are those of Estimate() on each scene. */
+  std::vector<Result> EstimateBatch(const std::vector<Scene>& scenes);
 
   const Params& params() const { return params_; }
   const EstimatorOptions& options() const { return options_; }
