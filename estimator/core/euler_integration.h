@@ -13,9 +13,9 @@
 
 namespace criticality::core {
 
-CRIT_HD void EulerStep(const StateDerivative& d, double tau, MotionState* s) {
-  const double cb = std::cos(s->beta), sb = std::sin(s->beta);
-  const double cp = std::cos(s->yaw), sp = std::sin(s->yaw);
+/** @param cb, sb, cp, sp cos/sin of s->beta and s->yaw (the caller has them). */
+CRIT_HD void EulerStep(const StateDerivative& d, double tau, MotionState* s, double cb, double sb,
+                       double cp, double sp) {
   // cos/sin(psi + beta) by the angle-sum identities: two products instead of two calls.
   const double cpb = cp * cb - sp * sb, spb = sp * cb + cp * sb;
   const double h = 0.5 * tau * tau;
@@ -32,6 +32,10 @@ CRIT_HD void EulerStep(const StateDerivative& d, double tau, MotionState* s) {
   s->beta = s->beta + d.beta_dot * tau;
   s->ax = ax;
   s->ay = ay;
+}
+
+CRIT_HD void EulerStep(const StateDerivative& d, double tau, MotionState* s) {
+  EulerStep(d, tau, s, std::cos(s->beta), std::sin(s->beta), std::cos(s->yaw), std::sin(s->yaw));
 }
 
 /** Limits a longitudinal acceleration so that the speed never goes below zero in one step

@@ -44,13 +44,14 @@ CRIT_HD double PreviewTime(const ControllerLimits& c, double v) {
 
 /** Steering angle at the front wheels for the next step: the paper's law on the predicted
  *  errors against `section` (in the same local frame as `s`), then the angle and rate limits.
- *  @param previous_steer the angle commanded at the previous step. */
+ *  @param previous_steer the angle commanded at the previous step.
+ *  @param cos_course, sin_course direction of travel, yaw + sideslip. */
 CRIT_HD double SteeringCommand(const ControllerLimits& c, const Parabola& section,
-                               const MotionState& s, double previous_steer, double tau) {
+                               const MotionState& s, double previous_steer, double tau,
+                               double cos_course, double sin_course) {
   const double tp = PreviewTime(c, s.v);
-  const double course = s.yaw + s.beta;
-  const double xp = s.x + std::cos(course) * s.v * tp;
-  const double yp = s.y + std::sin(course) * s.v * tp;
+  const double xp = s.x + cos_course * s.v * tp;
+  const double yp = s.y + sin_course * s.v * tp;
   const double slope = section.Slope(xp);
   const double d_path = (section.Eval(xp) - yp) / std::sqrt(1.0 + slope * slope);
   const double e_psi = WrapAngle(std::atan(slope) - s.yaw);
@@ -58,6 +59,13 @@ CRIT_HD double SteeringCommand(const ControllerLimits& c, const Parabola& sectio
   cmd = Clamp(cmd, -c.max_steer_rad, c.max_steer_rad);
   const double step = c.max_steer_rate_radps * tau;
   return Clamp(cmd, previous_steer - step, previous_steer + step);
+}
+
+/** The same, computing the course (yaw + sideslip) direction itself. */
+CRIT_HD double SteeringCommand(const ControllerLimits& c, const Parabola& section,
+                               const MotionState& s, double previous_steer, double tau) {
+  const double course = s.yaw + s.beta;
+  return SteeringCommand(c, section, s, previous_steer, tau, std::cos(course), std::sin(course));
 }
 
 }  // namespace criticality::core

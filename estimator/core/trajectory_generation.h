@@ -61,25 +61,39 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
   const double target = h.profile_target[profile];
   const double c0 = std::cos(h.X_WL.yaw), s0 = std::sin(h.X_WL.yaw);
   MotionState& s = st->s;
+  // The slip profile is constant once its ramp ends: its tyre-curve value is reused then.
+  double cached_slip = 0.0, cached_factor = LongitudinalForceFactor(0.0);
   for (int n = n_begin; n < n_end; ++n) {
     const double t = n * tau;
     int k = st->instant;  // explicit bounds keep the compiler's array-bounds check quiet
     while (k >= 0 && k < h.n_instants - 1 && k < kMaxSampleInstants - 1 && t >= h.instant_time[k]) ++k;
     st->instant = k;
     const Parabola& section = h.section[st->instant][SectionOfPath(h, path, st->instant)];
-    st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau);
+    // Trig of yaw and sideslip once per step; the course by the angle-sum identities.
+    double cb = std::cos(s.beta), sb = std::sin(s.beta);
+    const double cy = std::cos(s.yaw), sy = std::sin(s.yaw);
+    st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau, cy * cb - sy * sb,
+                                sy * cb + cy * sb);
     const double longitudinal = RampedValue(t, h.profile_start, target, h.latency, h.rate);
     const bool kinematic = s.v < h.seam_speed;
     StateDerivative d;
     if (h.model == MotionModelKind::kTwoTrack) {
-      d = kinematic ? KinematicSingleTrack(h.vehicle, st->steer, AccelFromSlip(h.vehicle, longitudinal), &s)
-                    : TwoTrackDerivative(h.vehicle, s, st->steer, longitudinal);
+      if (longitudinal != cached_slip) {
+        cached_slip = longitudinal;
+        cached_factor = LongitudinalForceFactor(longitudinal);
+      }
+      if (kinematic) {
+        d = KinematicSingleTrack(h.vehicle, st->steer, h.vehicle.friction * kGravity * cached_factor, &s);
+      } else {
+        d = TwoTrackDerivative(h.vehicle, s, st->steer, cached_factor, cb, sb);
+      }
     } else {
       d = kinematic ? KinematicSingleTrack(h.vehicle, st->steer, longitudinal, &s)
                     : OneTrackDerivative(h.vehicle, s, st->steer, longitudinal);
     }
+    if (kinematic) cb = std::cos(s.beta), sb = std::sin(s.beta);  // the kinematic model set beta
     d.v_dot = NonReversingAccel(s.v, d.v_dot, tau);
-    EulerStep(d, tau, &s);
+    EulerStep(d, tau, &s, cb, sb, cy, sy);
     if (s.v < 0.0) s.v = 0.0;  // rounding guard
     // Local frame -> scene frame (LocalToWorld with the rotation hoisted out of the loop).
     const size_t at = static_cast<size_t>(n) * stride;

@@ -52,14 +52,14 @@ struct ChassisForces {
   double mz{0.0};
 };
 
-/** @param cb, sb cos and sin of s.beta (the caller has them). */
+/** @param cb, sb cos and sin of s.beta; fx_factor LongitudinalForceFactor(slip) (the caller
+ *  has them). */
 CRIT_HD ChassisForces TwoTrackForces(const VehicleParams& p, const MotionState& s, double steer,
-                                     double slip, double cb, double sb) {
+                                     double fx_factor, double cb, double sb) {
   const double wheelbase = p.lf_m + p.lr_m;
   const double weight = p.mass_kg * kGravity;
   const double fz_front = 0.5 * weight * p.lr_m / wheelbase;  // per wheel
   const double fz_rear = 0.5 * weight * p.lf_m / wheelbase;
-  const double fx_factor = LongitudinalForceFactor(slip);
   const double vx_cog = s.v * cb, vy_cog = s.v * sb;
   const double cos_steer = std::cos(steer), sin_steer = std::sin(steer);
   ChassisForces out;
@@ -97,18 +97,24 @@ CRIT_HD ChassisForces TwoTrackForces(const VehicleParams& p, const MotionState& 
 /** [dv, dbeta, ddpsi] of the two-track model. Singular at v = 0 (see SeamSpeed). */
 CRIT_HD ChassisForces TwoTrackForces(const VehicleParams& p, const MotionState& s, double steer,
                                      double slip) {
-  return TwoTrackForces(p, s, steer, slip, std::cos(s.beta), std::sin(s.beta));
+  return TwoTrackForces(p, s, steer, LongitudinalForceFactor(slip), std::cos(s.beta), std::sin(s.beta));
 }
 
+/** [dv, dbeta, ddpsi]; cb, sb = cos/sin(s.beta), fx_factor = LongitudinalForceFactor(slip). */
 CRIT_HD StateDerivative TwoTrackDerivative(const VehicleParams& p, const MotionState& s,
-                                           double steer, double slip) {
-  const double cb = std::cos(s.beta), sb = std::sin(s.beta);
-  const ChassisForces f = TwoTrackForces(p, s, steer, slip, cb, sb);
+                                           double steer, double fx_factor, double cb, double sb) {
+  const ChassisForces f = TwoTrackForces(p, s, steer, fx_factor, cb, sb);
   StateDerivative d;
   d.v_dot = (f.fx * cb + f.fy * sb) / p.mass_kg;
   d.beta_dot = (-f.fx * sb + f.fy * cb) / (p.mass_kg * s.v) - s.yaw_rate;
   d.yaw_acc = f.mz / p.yaw_inertia_kgm2;
   return d;
+}
+
+CRIT_HD StateDerivative TwoTrackDerivative(const VehicleParams& p, const MotionState& s,
+                                           double steer, double slip) {
+  return TwoTrackDerivative(p, s, steer, LongitudinalForceFactor(slip), std::cos(s.beta),
+                            std::sin(s.beta));
 }
 
 }  // namespace criticality::core
