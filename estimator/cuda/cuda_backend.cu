@@ -1,6 +1,7 @@
 // The CUDA backend: trajectory generation, collision recognition and risk assessment on the
 // device, from the same core/ functions as the CPU (one thread per hypothesis, per ego x CO
-// pair, per ego hypothesis), with no host round trip between modules. Street data processing
+// pair, per ego hypothesis; the per-thread bodies are in kernel_bodies.h, tested on the CPU),
+// with no host round trip between modules. Street data processing
 // and hypothesis scoring (tiny) stay on the host (BuildProblem). Buffers are plain cudaMalloc,
 // grown when needed and reused across calls. Poses are stored step-major ([n * count + t]) so
 // that the threads of a warp read neighbouring CO poses. Sums over ego hypotheses run in ego
@@ -18,6 +19,7 @@
 #include "core/trajectory_generation.h"
 #include "cuda/cuda_backend.h"
 #include "cuda/device.cuh"
+#include "cuda/kernel_bodies.h"
 #include "src/risk_assessment.h"
 
 namespace criticality::cuda {
@@ -70,115 +72,34 @@ __global__ void TrajectoryKernel(const core::HypothesisSet* sets, const int* co_
                                  double* ex, double* ey, double* eyaw, double* cx, double* cy,
                                  double* cyaw) {
   const int g = blockIdx.x * blockDim.x + threadIdx.x;
-  if (g < n_ego) {
-    const core::HypothesisSet& h = sets[0];
-    core::SimulateHypothesis(h, cfg, g / h.n_paths, g % h.n_paths, ex + g, ey + g, eyaw + g, n_ego);
-  } else if (g < n_ego + n_co) {
-    const int j = g - n_ego;
-    const int o = co_object_of[j];
-    const core::HypothesisSet& h = sets[1 + o];
-    const int t = j - co_offset[o];
-    core::SimulateHypothesis(h, cfg, t / h.n_paths, t % h.n_paths, cx + j, cy + j, cyaw + j, n_co);
-  }
+  TrajectoryBody(g, sets, co_object_of, co_offset, n_ego, n_co, cfg, ex, ey, eyaw, cx, cy, cyaw);
 }
 
 __global__ void TrigKernel(const double* yaw, size_t n, double* c, double* s) {
   const size_t k = blockIdx.x * static_cast<size_t>(blockDim.x) + threadIdx.x;
-  if (k < n) {
-    c[k] = cos(yaw[k]);
-    s[k] = sin(yaw[k]);
-  }
+  if (k < n) TrigBody(k, yaw, c, s);
 }
 
-struct Poses {
-  const double *x, *y, *c, *s;
-};
-
-// One thread per (ego trajectory i, CO trajectory j), j fastest: first colliding step, 1-based.
 __global__ void CollisionKernel(int n_ego, int n_co, int steps, Poses ego, Poses co, double ego_hl,
                                 double ego_hw, const double* co_hl, const double* co_hw,
                                 std::int16_t* first) {
   const size_t k = blockIdx.x * static_cast<size_t>(blockDim.x) + threadIdx.x;
-  if (k >= static_cast<size_t>(n_ego) * n_co) return;
-  const int i = static_cast<int>(k / n_co), j = static_cast<int>(k % n_co);
-  const double reach = core::BoundingRadius(ego_hl, ego_hw) + core::BoundingRadius(co_hl[j], co_hw[j]) + 1e-9;
-  const double reach2 = reach * reach;
-  std::int16_t hit = 0;
-  for (int n = 0; n < steps; ++n) {
-    const size_t a = static_cast<size_t>(n) * n_ego + i, b = static_cast<size_t>(n) * n_co + j;
-    const double dx = co.x[b] - ego.x[a], dy = co.y[b] - ego.y[a];
-    if (dx * dx + dy * dy > reach2) continue;
-    const core::OrientedBox<double> ba{ego.x[a], ego.y[a], ego.c[a], ego.s[a], ego_hl, ego_hw};
-    const core::OrientedBox<double> bb{co.x[b], co.y[b], co.c[b], co.s[b], co_hl[j], co_hw[j]};
-    if (core::BoxesOverlap(ba, bb)) {
-      hit = static_cast<std::int16_t>(n + 1);
-      break;
-    }
+  if (k < static_cast<size_t>(n_ego) * n_co) {
+    CollisionBody(k, n_ego, n_co, steps, ego, co, ego_hl, ego_hw, co_hl, co_hw, first);
   }
-  first[k] = hit;
 }
 
-struct RiskScratch {
-  int* histogram;     // n_ego x (steps + 1)
-  int* events;        // n_ego x n_co
-  double* contrib;    // n_ego x n_co
-  double* hit_mass;   // n_ego x n_obj
-};
-
-// One thread per ego hypothesis: its colliding CO trajectories in chronological order (a
-// counting sort by step, stable in j), the paper's chronological approximation (core), and its
-// split over steps and objects.
 __global__ void RiskKernel(int n_ego, int n_co, int steps, int n_obj, const std::int16_t* first,
                            const double* p_co, const int* object_of, RiskScratch w, double* ego_col,
                            char* ego_hit, double* by_step, double* by_object) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= n_ego) return;
-  const std::int16_t* row = first + static_cast<size_t>(i) * n_co;
-  int* hist = w.histogram + static_cast<size_t>(i) * (steps + 1);
-  int* ev = w.events + static_cast<size_t>(i) * n_co;
-  double* contrib = w.contrib + static_cast<size_t>(i) * n_co;
-  double* mass = w.hit_mass + static_cast<size_t>(i) * n_obj;
-  double* step_row = by_step + static_cast<size_t>(i) * steps;
-  double* obj_row = by_object + static_cast<size_t>(i) * n_obj;
-  for (int n = 0; n <= steps; ++n) hist[n] = 0;
-  for (int j = 0; j < n_co; ++j) {
-    if (row[j] > 0) ++hist[row[j]];
-  }
-  int total = 0;
-  for (int n = 1; n <= steps; ++n) {  // start offsets
-    const int c = hist[n];
-    hist[n] = total;
-    total += c;
-  }
-  for (int j = 0; j < n_co; ++j) {
-    if (row[j] > 0) ev[hist[row[j]]++] = j;
-  }
-  for (int o = 0; o < n_obj; ++o) mass[o] = 0.0, obj_row[o] = 0.0;
-  for (int n = 0; n < steps; ++n) step_row[n] = 0.0;
-  ego_hit[i] = total > 0;
-  ego_col[i] = total > 0 ? core::ChronologicalCollisionProbability(total, ev, p_co, object_of, n_obj,
-                                                                   mass, contrib)
-                         : 0.0;
-  for (int e = 0; e < total; ++e) {
-    step_row[row[ev[e]] - 1] += contrib[e];
-    obj_row[object_of[ev[e]]] += contrib[e];
-  }
+  if (i < n_ego) RiskBody(i, n_co, steps, n_obj, first, p_co, object_of, w, ego_col, ego_hit, by_step, by_object);
 }
 
-// One thread per output (steps, then objects, then p_cra): sums over ego hypotheses in order.
 __global__ void ReduceKernel(int n_ego, int steps, int n_obj, const double* p_ego, const double* ego_col,
                              const double* by_step, const double* by_object, double* out) {
   const int q = blockIdx.x * blockDim.x + threadIdx.x;
-  if (q > steps + n_obj) return;
-  double sum = 0.0;
-  for (int i = 0; i < n_ego; ++i) {
-    if (ego_col[i] == 0.0) continue;  // like the CPU: only colliding hypotheses add
-    const double v = q < steps ? by_step[static_cast<size_t>(i) * steps + q]
-                     : q < steps + n_obj ? by_object[static_cast<size_t>(i) * n_obj + (q - steps)]
-                                         : ego_col[i];
-    sum += p_ego[i] * v;
-  }
-  out[q] = sum;
+  if (q <= steps + n_obj) ReduceBody(q, n_ego, steps, n_obj, p_ego, ego_col, by_step, by_object, out);
 }
 
 double MsSince(std::chrono::steady_clock::time_point t0) {
