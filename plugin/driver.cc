@@ -55,7 +55,8 @@ std::unique_ptr<SumoWorld> Open(const DriverOptions& o) {
     const auto colon = o.connect.rfind(':');  // validated by ParseDriverOptions
     return ConnectLibtraci(o.connect.substr(0, colon), std::stoi(o.connect.substr(colon + 1)));
   }
-  std::vector<std::string> args{"-c", o.sumo_config, "--no-step-log", "true", "--xml-validation", "never"};
+  std::vector<std::string> args{"-c",   o.sumo_config,      "--no-step-log",
+                                "true", "--xml-validation", "never"};
   args.insert(args.end(), o.sumo_args.begin(), o.sumo_args.end());
   return StartLibsumo(args);
 }
@@ -64,11 +65,13 @@ std::unique_ptr<SumoWorld> Open(const DriverOptions& o) {
 
 void RunDriver(const DriverOptions& o, std::ostream& summary) {
   // Without SUMO_HOME, SUMO may try slow web lookups for XML schemas (DESIGN.md).
-  if (!std::getenv("SUMO_HOME") && fs::exists("/usr/share/sumo")) setenv("SUMO_HOME", "/usr/share/sumo", 0);
+  if (!std::getenv("SUMO_HOME") && fs::exists("/usr/share/sumo"))
+    setenv("SUMO_HOME", "/usr/share/sumo", 0);
   if (!o.record_scenes.empty()) {
     std::error_code ec;
     fs::create_directories(o.record_scenes, ec);
-    if (ec) throw std::invalid_argument("--record-scenes '" + o.record_scenes + "': " + ec.message());
+    if (ec)
+      throw std::invalid_argument("--record-scenes '" + o.record_scenes + "': " + ec.message());
   }
   ResultsDb db(o.output);
   std::unique_ptr<SumoWorld> world;
@@ -112,7 +115,8 @@ void RunDriver(const DriverOptions& o, std::ostream& summary) {
       if (end >= 0.0 && t >= end - 1e-9) break;
       if (world->ExpectedObjects() <= 0) break;
       for (size_t k = 0; k < o.events.size(); ++k) {
-        if (!applied[k] && o.events[k].time_s <= t + 0.5 * dt) applied[k] = world->Apply(o.events[k]);
+        if (!applied[k] && o.events[k].time_s <= t + 0.5 * dt)
+          applied[k] = world->Apply(o.events[k]);
       }
       world->Step();
       ++steps;
@@ -137,8 +141,8 @@ void RunDriver(const DriverOptions& o, std::ostream& summary) {
         const std::string key = c.collider + "\n" + c.victim;
         now_pairs.insert(key);
         if (active_pairs.count(key)) continue;
-        db.AddCollision(CollisionRow{t, c.collider, c.victim, c.collider_type, c.victim_type, c.type,
-                                     c.lane, c.collider_speed, c.victim_speed, c.pos});
+        db.AddCollision(CollisionRow{t, c.collider, c.victim, c.collider_type, c.victim_type,
+                                     c.type, c.lane, c.collider_speed, c.victim_speed, c.pos});
         ++collisions;
       }
       active_pairs.swap(now_pairs);
@@ -190,7 +194,8 @@ void RunDriver(const DriverOptions& o, std::ostream& summary) {
             // Follow the best escape route's acceleration when one exists and it slows down;
             // otherwise brake as hard as the vehicle can.
             double accel = -world->EmergencyDecel(ego);
-            if (!r.escape_routes.empty()) accel = std::min(r.escape_routes.front().profile_accel_mps2, 0.0);
+            if (!r.escape_routes.empty())
+              accel = std::min(r.escape_routes.front().profile_accel_mps2, 0.0);
             if (accel >= 0.0) accel = -world->EmergencyDecel(ego);
             const double target = std::max(0.0, speed + accel * dt);
             world->CommandSpeed(ego, target);
@@ -206,20 +211,23 @@ void RunDriver(const DriverOptions& o, std::ostream& summary) {
             s.braking = false;
           }
         }
-        db.AddStep(t, ego, p, r.times.total_ms, static_cast<int>(r.objects.size()), speed, s.braking);
+        db.AddStep(t, ego, p, r.times.total_ms, static_cast<int>(r.objects.size()), speed,
+                   s.braking);
       }
       db.Commit();
       if (tty) {
         const auto wall = std::chrono::steady_clock::now();
         if (wall - last_print > std::chrono::milliseconds(500)) {
           const double secs = std::chrono::duration<double>(wall - wall0).count();
-          std::fprintf(stderr, "\r  t = %.1f s  %.0f steps/s  egos %zu  warnings %lld  collisions %lld   ",
+          std::fprintf(stderr,
+                       "\r  t = %.1f s  %.0f steps/s  egos %zu  warnings %lld  collisions %lld   ",
                        t, steps / std::max(secs, 1e-9), current.size(), warnings, collisions);
           last_print = wall;
         }
       }
       if (!o.all_vehicles && !o.egos.empty() && arrived.size() > 0 &&
-          std::all_of(o.egos.begin(), o.egos.end(), [&](const std::string& e) { return arrived.count(e); })) {
+          std::all_of(o.egos.begin(), o.egos.end(),
+                      [&](const std::string& e) { return arrived.count(e); })) {
         break;  // every ego has finished its route
       }
     }

@@ -1,7 +1,6 @@
 #include "plugin/driver_options.h"
 
 #include <boost/program_options.hpp>
-
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -15,9 +14,12 @@ namespace criticality::plugin {
 
 std::string ActName(Act act) {
   switch (act) {
-    case Act::kNone: return "none";
-    case Act::kWarn: return "warn";
-    case Act::kBrake: return "brake";
+    case Act::kNone:
+      return "none";
+    case Act::kWarn:
+      return "warn";
+    case Act::kBrake:
+      return "brake";
   }
   return "?";
 }
@@ -36,54 +38,65 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
   std::vector<std::string> events;
   bool no_progress = false;
   po::options_description generic("General");
-  generic.add_options()
-      ("help,h", "show this help and exit")
-      ("config", po::value(&config),
-       "read further options from FILE (same names, one 'name = value' per line; a scenario's "
-       "scenario.cfg). Paths in it are relative to its folder. Command-line values win.");
+  generic.add_options()("help,h", "show this help and exit")(
+      "config", po::value(&config),
+      "read further options from FILE (same names, one 'name = value' per line; a scenario's "
+      "scenario.cfg). Paths in it are relative to its folder. Command-line values win.");
   po::options_description run("Simulation");
-  run.add_options()
-      ("sumo-config,c", po::value(&o.sumo_config), "SUMO configuration (.sumocfg) to run in-process (libsumo)")
-      ("connect", po::value(&o.connect),
-       "HOST:PORT of a SUMO or sumo-gui already running with --remote-port PORT; attach to it "
-       "through libtraci instead of running SUMO in-process")
-      ("ego", po::value(&o.egos)->composing(), "vehicle ID whose criticality is estimated (repeatable)")
-      ("all-vehicles", po::bool_switch(&o.all_vehicles), "every vehicle present is an ego")
-      ("event", po::value(&events)->composing(),
-       "scripted event 'TIME TARGET ACTION ARGS' (repeatable; usually in a scenario.cfg). ACTION: "
-       "speed-mode VEH BITS | lane-change-mode VEH BITS | speed VEH MPS | slow-down VEH MPS SEC | "
-       "lane-change VEH INDEX SEC | param VEH KEY VALUE | person-speed PERSON MPS")
-      ("end", po::value(&o.end_time_s)->default_value(-1.0, "when SUMO ends"), "stop at this simulated time (s)")
-      ("expect", po::value(&expect), "scenario expectation, reported in the summary: collision | no-collision");
+  run.add_options()("sumo-config,c", po::value(&o.sumo_config),
+                    "SUMO configuration (.sumocfg) to run in-process (libsumo)")(
+      "connect", po::value(&o.connect),
+      "HOST:PORT of a SUMO or sumo-gui already running with --remote-port PORT; attach to it "
+      "through libtraci instead of running SUMO in-process")(
+      "ego", po::value(&o.egos)->composing(),
+      "vehicle ID whose criticality is estimated (repeatable)")(
+      "all-vehicles", po::bool_switch(&o.all_vehicles), "every vehicle present is an ego")(
+      "event", po::value(&events)->composing(),
+      "scripted event 'TIME TARGET ACTION ARGS' (repeatable; usually in a scenario.cfg). ACTION: "
+      "speed-mode VEH BITS | lane-change-mode VEH BITS | speed VEH MPS | slow-down VEH MPS SEC | "
+      "lane-change VEH INDEX SEC | param VEH KEY VALUE | person-speed PERSON MPS")(
+      "end", po::value(&o.end_time_s)->default_value(-1.0, "when SUMO ends"),
+      "stop at this simulated time (s)")(
+      "expect", po::value(&expect),
+      "scenario expectation, reported in the summary: collision | no-collision");
   po::options_description action("Acting on the estimate");
-  action.add_options()
-      ("act", po::value(&act)->default_value(act),
-       "none: only record; warn: record warning episodes, publish the criticality as vehicle "
-       "parameter 'criticality' and colour the ego red while warning; brake: warn and also brake "
-       "(or follow the best escape route's acceleration) while p >= brake threshold, then hand "
-       "control back to SUMO")
-      ("warn-threshold", po::value(&o.warn_threshold)->default_value(o.warn_threshold), "p_cra that starts a warning episode")
-      ("warn-release", po::value(&o.warn_release)->default_value(-1.0, "0.8 x warn threshold"),
-       "p_cra below which a warning episode ends (hysteresis)")
-      ("brake-threshold", po::value(&o.brake_threshold)->default_value(o.brake_threshold), "p_cra that triggers braking (--act brake)");
+  action.add_options()(
+      "act", po::value(&act)->default_value(act),
+      "none: only record; warn: record warning episodes, publish the criticality as vehicle "
+      "parameter 'criticality' and colour the ego red while warning; brake: warn and also brake "
+      "(or follow the best escape route's acceleration) while p >= brake threshold, then hand "
+      "control back to SUMO")("warn-threshold",
+                              po::value(&o.warn_threshold)->default_value(o.warn_threshold),
+                              "p_cra that starts a warning episode")(
+      "warn-release", po::value(&o.warn_release)->default_value(-1.0, "0.8 x warn threshold"),
+      "p_cra below which a warning episode ends (hysteresis)")(
+      "brake-threshold", po::value(&o.brake_threshold)->default_value(o.brake_threshold),
+      "p_cra that triggers braking (--act brake)");
   po::options_description est("Estimator");
-  est.add_options()
-      ("backend", po::value(&backend)->default_value(backend), "reference | cpu | cuda | auto (cuda when a GPU is usable, else cpu)")
-      ("threads", po::value(&o.estimator.threads)->default_value(0), "estimator threads (0 = all cores)")
-      ("profiles", po::value(&o.params.profiles)->default_value(o.params.profiles), "acceleration/slip profiles per object (paper: 6 or 5)")
-      ("own-lane-samples", po::value(&o.params.own_lane_samples)->default_value(o.params.own_lane_samples),
-       "lateral path samples across the own lane (paper: 3)")
-      ("neighbour-lane-samples", po::value(&o.params.neighbour_lane_samples)->default_value(o.params.neighbour_lane_samples),
-       "lateral path samples across each neighbouring lane (paper: 2); ego paths = samples^3")
-      ("horizon", po::value(&o.params.horizon_s)->default_value(o.params.horizon_s), "prediction horizon (s)")
-      ("step", po::value(&o.params.step_s)->default_value(o.params.step_s), "prediction step (s)")
-      ("range", po::value(&o.range_m)->default_value(o.range_m), "vehicles and pedestrians within this distance of an ego are considered (m)");
+  est.add_options()("backend", po::value(&backend)->default_value(backend),
+                    "reference | cpu | cuda | auto (cuda when a GPU is usable, else cpu)")(
+      "threads", po::value(&o.estimator.threads)->default_value(0),
+      "estimator threads (0 = all cores)")(
+      "profiles", po::value(&o.params.profiles)->default_value(o.params.profiles),
+      "acceleration/slip profiles per object (paper: 6 or 5)")(
+      "own-lane-samples",
+      po::value(&o.params.own_lane_samples)->default_value(o.params.own_lane_samples),
+      "lateral path samples across the own lane (paper: 3)")(
+      "neighbour-lane-samples",
+      po::value(&o.params.neighbour_lane_samples)->default_value(o.params.neighbour_lane_samples),
+      "lateral path samples across each neighbouring lane (paper: 2); ego paths = samples^3")(
+      "horizon", po::value(&o.params.horizon_s)->default_value(o.params.horizon_s),
+      "prediction horizon (s)")("step", po::value(&o.params.step_s)->default_value(o.params.step_s),
+                                "prediction step (s)")(
+      "range", po::value(&o.range_m)->default_value(o.range_m),
+      "vehicles and pedestrians within this distance of an ego are considered (m)");
   po::options_description output("Output");
-  output.add_options()
-      ("output", po::value(&o.output), "results database (SQLite) to create; must not exist")
-      ("record-scenes", po::value(&o.record_scenes),
-       "write every estimated scene to DIR as a scene file that 'criticality-bench --scene-file' replays without SUMO")
-      ("no-progress", po::bool_switch(&no_progress), "no progress line even on a terminal");
+  output.add_options()("output", po::value(&o.output),
+                       "results database (SQLite) to create; must not exist")(
+      "record-scenes", po::value(&o.record_scenes),
+      "write every estimated scene to DIR as a scene file that 'criticality-bench --scene-file' "
+      "replays without SUMO")("no-progress", po::bool_switch(&no_progress),
+                              "no progress line even on a terminal");
   po::options_description all;
   all.add(generic).add(run).add(action).add(est).add(output);
 
@@ -94,9 +107,12 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
       std::cout << "sumo-criticality: runs SUMO and estimates, every step, each ego's collision "
                    "probability with the multi-hypothesis algorithm; records steps, warnings, "
                    "actions and SUMO's collisions in SQLite.\n\n"
-                   "Usage: sumo-criticality -c scenario.sumocfg --ego ego0 --act warn --output run.sqlite [-- SUMO options]\n"
-                   "       sumo-criticality --config scenarios/rear_end/scenario.cfg --output run.sqlite\n"
-                << all << "\nOn exit it prints one JSON summary line. Exit codes: 0 done, 2 bad "
+                   "Usage: sumo-criticality -c scenario.sumocfg --ego ego0 --act warn --output "
+                   "run.sqlite [-- SUMO options]\n"
+                   "       sumo-criticality --config scenarios/rear_end/scenario.cfg --output "
+                   "run.sqlite\n"
+                << all
+                << "\nOn exit it prints one JSON summary line. Exit codes: 0 done, 2 bad "
                    "options or input, 3 SUMO error, 4 results could not be written, 5 ego error.\n";
       out.exit_now = true;
       return out;
@@ -117,23 +133,29 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
     std::ifstream in(config);
     po::variables_map only_file;
     po::store(po::parse_config_file(in, all), only_file);
-    if (only_file.count("sumo-config") && only_file["sumo-config"].as<std::string>() == o.sumo_config) {
+    if (only_file.count("sumo-config") &&
+        only_file["sumo-config"].as<std::string>() == o.sumo_config) {
       o.sumo_config = (fs::path(config).parent_path() / o.sumo_config).lexically_normal().string();
     }
   }
   for (const std::string& e : events) o.events.push_back(ParseEvent(e));
   o.progress = !no_progress;
-  if (act == "none") o.act = Act::kNone;
-  else if (act == "warn") o.act = Act::kWarn;
-  else if (act == "brake") o.act = Act::kBrake;
-  else throw std::invalid_argument("--act '" + act + "': use none, warn or brake");
+  if (act == "none")
+    o.act = Act::kNone;
+  else if (act == "warn")
+    o.act = Act::kWarn;
+  else if (act == "brake")
+    o.act = Act::kBrake;
+  else
+    throw std::invalid_argument("--act '" + act + "': use none, warn or brake");
   o.estimator.backend = ParseBackend(backend);
   if (!expect.empty() && expect != "collision" && expect != "no-collision") {
     throw std::invalid_argument("--expect '" + expect + "': use collision or no-collision");
   }
   o.expect = expect;
   if (o.sumo_config.empty() && o.connect.empty()) {
-    throw std::invalid_argument("no simulation: give -c/--sumo-config FILE (or --connect HOST:PORT)");
+    throw std::invalid_argument(
+        "no simulation: give -c/--sumo-config FILE (or --connect HOST:PORT)");
   }
   if (!o.sumo_config.empty() && o.connect.empty() && !fs::exists(o.sumo_config)) {
     throw std::invalid_argument("--sumo-config '" + o.sumo_config + "': no such file");
@@ -146,16 +168,20 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
     } catch (const std::exception&) {
     }
     if (colon == std::string::npos || colon == 0 || port <= 0 || port > 65535) {
-      throw std::invalid_argument("--connect '" + o.connect + "': expected HOST:PORT, e.g. localhost:8813");
+      throw std::invalid_argument("--connect '" + o.connect +
+                                  "': expected HOST:PORT, e.g. localhost:8813");
     }
   }
   if (o.output.empty()) throw std::invalid_argument("no --output FILE.sqlite given");
-  if (o.egos.empty() && !o.all_vehicles) throw std::invalid_argument("no ego: give --ego ID (repeatable) or --all-vehicles");
+  if (o.egos.empty() && !o.all_vehicles)
+    throw std::invalid_argument("no ego: give --ego ID (repeatable) or --all-vehicles");
   for (double t : {o.warn_threshold, o.brake_threshold}) {
-    if (!(t > 0.0 && t <= 1.0)) throw std::invalid_argument("thresholds must be in (0, 1], got " + std::to_string(t));
+    if (!(t > 0.0 && t <= 1.0))
+      throw std::invalid_argument("thresholds must be in (0, 1], got " + std::to_string(t));
   }
   if (o.warn_release < 0.0) o.warn_release = 0.8 * o.warn_threshold;
-  if (o.warn_release > o.warn_threshold) throw std::invalid_argument("--warn-release must not exceed --warn-threshold");
+  if (o.warn_release > o.warn_threshold)
+    throw std::invalid_argument("--warn-release must not exceed --warn-threshold");
   if (!(o.range_m > 0.0)) throw std::invalid_argument("--range must be > 0");
   if (o.estimator.threads < 0) throw std::invalid_argument("--threads must be >= 0");
   ValidateParams(o.params);  // InputError (an invalid_argument) names the field

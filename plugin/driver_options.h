@@ -14,8 +14,8 @@ namespace criticality::plugin {
 enum class Act { kNone, kWarn, kBrake };
 
 struct DriverOptions {
-  std::string sumo_config;               ///< -c; relative paths in a --config file are relative to it
-  std::vector<std::string> sumo_args;    ///< passed through to SUMO (after --)
+  std::string sumo_config;             ///< -c; relative paths in a --config file are relative to it
+  std::vector<std::string> sumo_args;  ///< passed through to SUMO (after --)
   std::vector<std::string> egos;
   bool all_vehicles{false};
   Act act{Act::kWarn};
@@ -27,14 +27,14 @@ struct DriverOptions {
   double range_m{80.0};
   Params params;
   EstimatorOptions estimator;
-  std::string output;                    ///< SQLite file, required
-  std::string record_scenes;             ///< directory, optional
-  std::string connect;                   ///< HOST:PORT, optional
+  std::string output;         ///< SQLite file, required
+  std::string record_scenes;  ///< directory, optional
+  std::string connect;        ///< HOST:PORT, optional
   std::vector<ScenarioEvent> events;
-  double end_time_s{-1.0};               ///< stop at this simulated time (<0: when SUMO is done)
-  std::string expect;                    ///< "", "collision" or "no-collision" (scenario metadata)
-  bool progress{true};                   ///< progress line on a terminal
-  std::string command_line;              ///< for the runs table
+  double end_time_s{-1.0};   ///< stop at this simulated time (<0: when SUMO is done)
+  std::string expect;        ///< "", "collision" or "no-collision" (scenario metadata)
+  bool progress{true};       ///< progress line on a terminal
+  std::string command_line;  ///< for the runs table
 };
 
 /** What ParseDriverOptions decided. */

@@ -47,8 +47,10 @@ LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const core::Pose2& 
   const double half = 0.5 * c.width_m;
   LaneSet set;
   set.own = Lane{divider(half), divider(-half), false};
-  if (c.left) set.left = Lane{divider(half + c.left->width_m), divider(half), c.left->counter_traffic};
-  if (c.right) set.right = Lane{divider(-half), divider(-half - c.right->width_m), c.right->counter_traffic};
+  if (c.left)
+    set.left = Lane{divider(half + c.left->width_m), divider(half), c.left->counter_traffic};
+  if (c.right)
+    set.right = Lane{divider(-half), divider(-half - c.right->width_m), c.right->counter_traffic};
   // The estimator needs the samples to run forward in the vehicle's frame.
   for (const std::optional<Lane>* lane : {&set.own, &set.left, &set.right}) {
     if (!*lane) continue;

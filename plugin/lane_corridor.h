@@ -19,8 +19,8 @@ struct NeighbourLane {
 };
 
 struct LaneCorridor {
-  std::vector<Point2> centre;   ///< the own lane's centre line, in driving direction (world)
-  double position_m{0.0};       ///< arc length along `centre` of the vehicle's centre of gravity
+  std::vector<Point2> centre;  ///< the own lane's centre line, in driving direction (world)
+  double position_m{0.0};      ///< arc length along `centre` of the vehicle's centre of gravity
   double width_m{3.2};
   std::optional<NeighbourLane> left;
   std::optional<NeighbourLane> right;

@@ -40,9 +40,11 @@ std::string UtcNow() {
 ResultsDb::ResultsDb(const std::string& path) : path_(path) {
   struct stat st {};
   if (stat(path.c_str(), &st) == 0) {
-    throw ResultsError("output '" + path + "' already exists; remove it or choose another --output");
+    throw ResultsError("output '" + path +
+                       "' already exists; remove it or choose another --output");
   }
-  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
+  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) !=
+      SQLITE_OK) {
     const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
@@ -51,7 +53,8 @@ ResultsDb::ResultsDb(const std::string& path) : path_(path) {
   Exec("PRAGMA synchronous=NORMAL");
   Exec(kSchema);
   step_ = Prepare("INSERT INTO steps VALUES(?,?,?,?,?,?,?,?)");
-  open_warning_ = Prepare("INSERT INTO warnings(run_id,ego,start_s,end_s,peak_p) VALUES(?,?,?,NULL,?)");
+  open_warning_ =
+      Prepare("INSERT INTO warnings(run_id,ego,start_s,end_s,peak_p) VALUES(?,?,?,NULL,?)");
   peak_warning_ = Prepare("UPDATE warnings SET peak_p=? WHERE id=?");
   close_warning_ = Prepare("UPDATE warnings SET end_s=? WHERE id=?");
   action_ = Prepare("INSERT INTO actions VALUES(?,?,?,?,?,?,?)");
@@ -62,7 +65,8 @@ ResultsDb::ResultsDb(const std::string& path) : path_(path) {
 }
 
 ResultsDb::~ResultsDb() {
-  for (sqlite3_stmt* s : {step_, open_warning_, peak_warning_, close_warning_, action_, collision_}) {
+  for (sqlite3_stmt* s :
+       {step_, open_warning_, peak_warning_, close_warning_, action_, collision_}) {
     sqlite3_finalize(s);
   }
   if (db_) {
@@ -72,7 +76,8 @@ ResultsDb::~ResultsDb() {
 }
 
 void ResultsDb::Fail(const std::string& what) {
-  throw ResultsError("cannot write results to '" + path_ + "' (" + what + "): " + sqlite3_errmsg(db_));
+  throw ResultsError("cannot write results to '" + path_ + "' (" + what +
+                     "): " + sqlite3_errmsg(db_));
 }
 
 void ResultsDb::Exec(const std::string& sql) {

@@ -29,15 +29,16 @@ class ResultsDb {
   ResultsDb(const ResultsDb&) = delete;
   ResultsDb& operator=(const ResultsDb&) = delete;
 
-  void BeginRun(const std::string& options, const std::string& sumo_version, const std::string& egos);
+  void BeginRun(const std::string& options, const std::string& sumo_version,
+                const std::string& egos);
   void AddStep(double time_s, const std::string& ego, double p_collision, double estimator_ms,
                int objects, double speed_mps, bool acting);
   /** Opens a warning episode; returns its row id. */
   long long OpenWarning(const std::string& ego, double start_s, double p_collision);
   void UpdateWarningPeak(long long id, double peak);
   void CloseWarning(long long id, double end_s);
-  void AddAction(double time_s, const std::string& ego, const std::string& kind,
-                 double accel_mps2, double speed_mps, double p_collision);
+  void AddAction(double time_s, const std::string& ego, const std::string& kind, double accel_mps2,
+                 double speed_mps, double p_collision);
   /** Records a collision and its anticipation time (collision time minus the start of the
    *  latest warning episode of the collider or victim that began at or before it). */
   void AddCollision(const CollisionRow& c);

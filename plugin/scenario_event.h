@@ -20,10 +20,10 @@ struct ScenarioEvent {
   double time_s{0.0};
   std::string target;
   EventAction action{EventAction::kSpeed};
-  std::string text;          ///< the line as written, for messages
-  double number{0.0};        ///< speed, mode bits or lane index
+  std::string text;    ///< the line as written, for messages
+  double number{0.0};  ///< speed, mode bits or lane index
   double duration_s{0.0};
-  std::string key, value;    ///< for param
+  std::string key, value;  ///< for param
 };
 
 /** Parses "TIME TARGET ACTION ARGS..."; throws std::invalid_argument naming the problem. */

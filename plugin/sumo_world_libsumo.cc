@@ -1,6 +1,5 @@
 // SumoWorld on libsumo: SUMO runs inside this process.
 #include <libsumo/libsumo.h>
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -71,7 +70,8 @@ std::unique_ptr<SumoWorld> StartLibsumo(const std::vector<std::string>& args) {
   }
   const std::string errors = capture.Restore();
   if (!failure.empty()) {
-    throw SumoError("loading SUMO failed: " + failure + (errors.empty() ? "" : " (" + errors + ")"));
+    throw SumoError("loading SUMO failed: " + failure +
+                    (errors.empty() ? "" : " (" + errors + ")"));
   }
   std::fputs(capture.text().c_str(), stderr);  // warnings of a successful load stay visible
   return std::make_unique<World>();

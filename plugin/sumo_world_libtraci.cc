@@ -13,8 +13,8 @@ std::unique_ptr<SumoWorld> ConnectLibtraci(const std::string& host, int port) {
   try {
     libtraci::Simulation::init(port, 30, host);
   } catch (const std::exception& e) {
-    throw SumoError("cannot connect to SUMO at " + host + ":" + std::to_string(port) + ": " + e.what() +
-                    " (start it with --remote-port " + std::to_string(port) + ")");
+    throw SumoError("cannot connect to SUMO at " + host + ":" + std::to_string(port) + ": " +
+                    e.what() + " (start it with --remote-port " + std::to_string(port) + ")");
   }
   return std::make_unique<World>();
 }

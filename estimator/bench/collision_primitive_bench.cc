@@ -3,7 +3,13 @@
 // box-box test (Debian libfcl-dev) and Boost.Geometry's intersects on the same pairs:
 // throughput per core (one thread) and agreement (pairs within 1e-6 m of touching excluded).
 // A separate program from criticality-bench so that the latter needs no FCL on a GPU machine.
+#include <fcl/fcl.h>
+
 #include <algorithm>
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/geometries/polygon.hpp>
+#include <boost/program_options.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,12 +17,6 @@
 #include <random>
 #include <string>
 #include <vector>
-
-#include <boost/geometry.hpp>
-#include <boost/geometry/geometries/point_xy.hpp>
-#include <boost/geometry/geometries/polygon.hpp>
-#include <boost/program_options.hpp>
-#include <fcl/fcl.h>
 
 #include "core/geometry.h"
 #include "core/oriented_box.h"
@@ -66,11 +66,12 @@ int main(int argc, char** argv) {
   po::options_description desc(
       "collision-primitive-bench: our oriented-box overlap test against FCL (box-box) and\n"
       "Boost.Geometry (intersects) on the same seeded pairs, one thread.\n\nOptions");
-  desc.add_options()("help,h", "show this help")
-      ("pairs", po::value(&pairs)->default_value(pairs), "number of box pairs")
-      ("repeat", po::value(&repeat)->default_value(repeat), "timed passes per method (median reported)")
-      ("seed", po::value(&seed)->default_value(seed), "random seed of the pairs")
-      ("json", po::bool_switch(&json), "one JSON object as the last line");
+  desc.add_options()("help,h", "show this help")("pairs", po::value(&pairs)->default_value(pairs),
+                                                 "number of box pairs")(
+      "repeat", po::value(&repeat)->default_value(repeat),
+      "timed passes per method (median reported)")("seed", po::value(&seed)->default_value(seed),
+                                                   "random seed of the pairs")(
+      "json", po::bool_switch(&json), "one JSON object as the last line");
   try {
     po::variables_map vm;
     po::store(po::parse_command_line(argc, argv, desc), vm);
@@ -88,8 +89,8 @@ int main(int argc, char** argv) {
   // Pairs: centres in an 8 m square, any heading, half sizes 0.1-3 m (pedestrians to trucks):
   // about half overlap, many of them crossing without a corner inside the other.
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> pos(-4.0, 4.0), yaw(-criticality::core::kPi, criticality::core::kPi),
-      half(0.1, 3.0);
+  std::uniform_real_distribution<double> pos(-4.0, 4.0),
+      yaw(-criticality::core::kPi, criticality::core::kPi), half(0.1, 3.0);
   std::vector<OrientedBox<double>> a(pairs), b(pairs);
   std::vector<fcl::Boxd> fa, fb;
   std::vector<fcl::Transform3d> ta(pairs), tb(pairs);
@@ -119,17 +120,22 @@ int main(int argc, char** argv) {
     pa[k] = ToPolygon(a[k]);
     pb[k] = ToPolygon(b[k]);
     // Within 1e-6 m of touching: growing and shrinking b by 1e-6 m changes the answer.
-    const OrientedBox<double> grown{b[k].cx, b[k].cy, b[k].c, b[k].s, b[k].hl + 1e-6, b[k].hw + 1e-6};
-    const OrientedBox<double> shrunk{b[k].cx, b[k].cy, b[k].c, b[k].s, b[k].hl - 1e-6, b[k].hw - 1e-6};
-    near_touch[k] = criticality::core::BoxesOverlap(a[k], grown) != criticality::core::BoxesOverlap(a[k], shrunk);
+    const OrientedBox<double> grown{b[k].cx, b[k].cy,        b[k].c,
+                                    b[k].s,  b[k].hl + 1e-6, b[k].hw + 1e-6};
+    const OrientedBox<double> shrunk{b[k].cx, b[k].cy,        b[k].c,
+                                     b[k].s,  b[k].hl - 1e-6, b[k].hw - 1e-6};
+    near_touch[k] = criticality::core::BoxesOverlap(a[k], grown) !=
+                    criticality::core::BoxesOverlap(a[k], shrunk);
   }
 
   std::vector<char> ours(pairs), ours_f(pairs), fcl_out(pairs), bg_out(pairs);
   std::vector<double> t_ours, t_ours_f, t_fcl, t_bg;
   std::vector<OrientedBox<float>> af(pairs), bf(pairs);
   for (int k = 0; k < pairs; ++k) {
-    af[k] = OrientedBox<float>{float(a[k].cx), float(a[k].cy), float(a[k].c), float(a[k].s), float(a[k].hl), float(a[k].hw)};
-    bf[k] = OrientedBox<float>{float(b[k].cx), float(b[k].cy), float(b[k].c), float(b[k].s), float(b[k].hl), float(b[k].hw)};
+    af[k] = OrientedBox<float>{float(a[k].cx), float(a[k].cy), float(a[k].c),
+                               float(a[k].s),  float(a[k].hl), float(a[k].hw)};
+    bf[k] = OrientedBox<float>{float(b[k].cx), float(b[k].cy), float(b[k].c),
+                               float(b[k].s),  float(b[k].hl), float(b[k].hw)};
   }
   const fcl::CollisionRequestd request;  // boolean answer, one contact
   for (int r = 0; r < repeat; ++r) {
@@ -160,24 +166,30 @@ int main(int argc, char** argv) {
     overlapping += ours[k];
     excluded += near_touch[k];
   }
-  const double m_ours = Median(t_ours), m_f = Median(t_ours_f), m_fcl = Median(t_fcl), m_bg = Median(t_bg);
-  std::printf("%d seeded oriented-box pairs (seed %u), %lld overlapping, %lld within 1e-6 m of touching excluded from agreement\n",
-              pairs, seed, overlapping, excluded);
-  std::printf("%-28s %10s %14s %12s %s\n", "method (one thread)", "median ms", "pairs/s", "x ours", "disagreements");
+  const double m_ours = Median(t_ours), m_f = Median(t_ours_f), m_fcl = Median(t_fcl),
+               m_bg = Median(t_bg);
+  std::printf(
+      "%d seeded oriented-box pairs (seed %u), %lld overlapping, %lld within 1e-6 m of touching "
+      "excluded from agreement\n",
+      pairs, seed, overlapping, excluded);
+  std::printf("%-28s %10s %14s %12s %s\n", "method (one thread)", "median ms", "pairs/s", "x ours",
+              "disagreements");
   auto row = [&](const char* name, double ms, long long dis) {
-    std::printf("%-28s %10.2f %14.3e %12.2f %lld\n", name, ms, pairs / (ms * 1e-3), ms / m_ours, dis);
+    std::printf("%-28s %10.2f %14.3e %12.2f %lld\n", name, ms, pairs / (ms * 1e-3), ms / m_ours,
+                dis);
   };
   row("ours: SAT, double", m_ours, 0);
   row("ours: SAT, float", m_f, disagree(ours_f));
   row("FCL 0.7 box-box", m_fcl, disagree(fcl_out));
   row("Boost.Geometry intersects", m_bg, disagree(bg_out));
   if (json) {
-    std::printf("{\"pairs\":%d,\"seed\":%u,\"overlapping\":%lld,\"near_touch_excluded\":%lld,"
-                "\"ours_ms\":%.3f,\"ours_float_ms\":%.3f,\"fcl_ms\":%.3f,\"boost_geometry_ms\":%.3f,"
-                "\"speedup_vs_fcl\":%.2f,\"speedup_vs_boost_geometry\":%.2f,\"fcl_disagreements\":%lld,"
-                "\"boost_geometry_disagreements\":%lld,\"float_disagreements\":%lld}\n",
-                pairs, seed, overlapping, excluded, m_ours, m_f, m_fcl, m_bg, m_fcl / m_ours, m_bg / m_ours,
-                disagree(fcl_out), disagree(bg_out), disagree(ours_f));
+    std::printf(
+        "{\"pairs\":%d,\"seed\":%u,\"overlapping\":%lld,\"near_touch_excluded\":%lld,"
+        "\"ours_ms\":%.3f,\"ours_float_ms\":%.3f,\"fcl_ms\":%.3f,\"boost_geometry_ms\":%.3f,"
+        "\"speedup_vs_fcl\":%.2f,\"speedup_vs_boost_geometry\":%.2f,\"fcl_disagreements\":%lld,"
+        "\"boost_geometry_disagreements\":%lld,\"float_disagreements\":%lld}\n",
+        pairs, seed, overlapping, excluded, m_ours, m_f, m_fcl, m_bg, m_fcl / m_ours, m_bg / m_ours,
+        disagree(fcl_out), disagree(bg_out), disagree(ours_f));
   }
   return 0;
 }

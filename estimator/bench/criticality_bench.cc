@@ -2,14 +2,13 @@
 // (median and minimum over --repeat runs, after --warmup runs). No SUMO dependency: it must run
 // on a bare GPU machine. With --json the last line of standard output is one JSON object.
 #include <algorithm>
+#include <boost/program_options.hpp>
 #include <cstdio>
 #include <exception>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <boost/program_options.hpp>
 
 #include "bench/paper_scenes.h"
 #include "criticality/errors.h"
@@ -72,18 +71,24 @@ double Median(std::vector<double> v) {
 
 std::string KindName(ObjectKind k) {
   switch (k) {
-    case ObjectKind::kEgo: return "ego";
-    case ObjectKind::kVehicle: return "vehicle";
-    case ObjectKind::kPedestrian: return "pedestrian";
+    case ObjectKind::kEgo:
+      return "ego";
+    case ObjectKind::kVehicle:
+      return "vehicle";
+    case ObjectKind::kPedestrian:
+      return "pedestrian";
   }
   return "?";
 }
 
 std::string LaneName(int lane) {
   switch (lane) {
-    case -1: return "right lane";
-    case 0: return "ego lane";
-    case 1: return "left lane";
+    case -1:
+      return "right lane";
+    case 0:
+      return "ego lane";
+    case 1:
+      return "left lane";
   }
   return "no ego lane";
 }
@@ -97,8 +102,7 @@ void PrintReport(const Scene& scene, const Params& params, const Result& r) {
   std::printf("\nContribution per object (shares of p_cra):\n");
   for (const ObjectResult& o : r.objects) {
     std::printf("  %-14s %-10s %-16s %4d hypotheses  %.4f\n", o.id.c_str(),
-                KindName(o.kind).c_str(), LaneName(o.lane).c_str(), o.trajectories,
-                o.contribution);
+                KindName(o.kind).c_str(), LaneName(o.lane).c_str(), o.trajectories, o.contribution);
   }
   // First-collision time: where the mass lies.
   double cum = 0.0, t_first = -1.0, t_median = -1.0;
@@ -134,11 +138,13 @@ void PrintReport(const Scene& scene, const Params& params, const Result& r) {
     const EscapeRoute& e = r.escape_routes[k];
     std::ostringstream sections;
     for (size_t s = 0; s < e.sections.size(); ++s) sections << (s ? "," : "") << e.sections[s];
-    std::printf("  #%zu  hypothesis %4d  slip %+.3f (about %+.1f m/s^2)  lateral samples [%s]  p = %.5f\n",
-                k + 1, e.ego_trajectory, e.profile_slip, e.profile_accel_mps2,
-                sections.str().c_str(), e.probability);
+    std::printf(
+        "  #%zu  hypothesis %4d  slip %+.3f (about %+.1f m/s^2)  lateral samples [%s]  p = %.5f\n",
+        k + 1, e.ego_trajectory, e.profile_slip, e.profile_accel_mps2, sections.str().c_str(),
+        e.probability);
   }
-  std::printf("  (lateral samples count from the right: 0-1 right lane, 2-4 ego lane, 5-6 left lane)\n");
+  std::printf(
+      "  (lateral samples count from the right: 0-1 right lane, 2-4 ego lane, 5-6 left lane)\n");
 }
 
 // Every backend on the same scene, one after the other in this process.
@@ -154,20 +160,22 @@ int Compare(const Scene& scene, const Params& params, const Options& opt) {
     eopt.keep_pair_matrix = true;
     // The reference is slow: fewer repetitions keep --compare usable on S2.
     const int repeat = b == Backend::kReference ? std::max(1, std::min(opt.repeat, 3)) : opt.repeat;
-    runs.push_back(TimeBackend(scene, params, eopt, b == Backend::kReference ? 0 : opt.warmup, repeat));
+    runs.push_back(
+        TimeBackend(scene, params, eopt, b == Backend::kReference ? 0 : opt.warmup, repeat));
     threads.push_back(b == Backend::kReference ? 1 : Estimator(params, eopt).threads());
   }
   const Result& ref = runs[0].last;
   const WorkCounts& c = ref.counts;
-  std::printf("scene %s, %d profiles: %d ego x %d CO trajectories x %d steps = %llu pose combinations\n",
-              opt.scene.c_str(), opt.profiles, c.ego_trajectories, c.co_trajectories, c.time_steps,
-              static_cast<unsigned long long>(c.pose_combinations));
+  std::printf(
+      "scene %s, %d profiles: %d ego x %d CO trajectories x %d steps = %llu pose combinations\n",
+      opt.scene.c_str(), opt.profiles, c.ego_trajectories, c.co_trajectories, c.time_steps,
+      static_cast<unsigned long long>(c.pose_combinations));
   std::printf("%-10s %7s %10s %10s %14s %9s  %s\n", "backend", "threads", "median ms", "min ms",
               "poses/s", "x ref", "agreement with the reference");
   const double ref_median = Median(runs[0].total);
-  std::string json = "{\"scene\":\"" + JsonEscape(opt.scene) + "\",\"profiles\":" +
-                     std::to_string(opt.profiles) + ",\"pose_combinations\":" +
-                     std::to_string(c.pose_combinations) + ",\"backends\":[";
+  std::string json =
+      "{\"scene\":\"" + JsonEscape(opt.scene) + "\",\"profiles\":" + std::to_string(opt.profiles) +
+      ",\"pose_combinations\":" + std::to_string(c.pose_combinations) + ",\"backends\":[";
   for (size_t k = 0; k < backends.size(); ++k) {
     const Result& r = runs[k].last;
     const double median = Median(runs[k].total);
@@ -204,44 +212,47 @@ int main(int argc, char** argv) {
       "criticality-bench: time the multi-hypothesis criticality estimator on the paper's scenes\n"
       "(S1 = ego + 3 other vehicles, S2 = ego + 10, straight 3-lane road, 2 s horizon, 20 ms\n"
       "steps, 343 ego paths, 7 paths per other vehicle).\n\nOptions");
-  desc.add_options()
-      ("help,h", "show this help and exit")
-      ("scene", po::value(&opt.scene)->default_value(opt.scene), "S1 or S2")
-      ("scene-file", po::value(&opt.scene_file),
-       "replay a scene file instead (written by sumo-criticality --record-scenes)")
-      ("profiles", po::value(&opt.profiles)->default_value(opt.profiles),
-       "acceleration/slip profiles per object (paper: 6 or 5)")
-      ("backend", po::value(&opt.backend)->default_value(opt.backend),
-       "reference (plain literal algorithm, one thread), cpu (fast path), cuda (GPU) or auto (cuda when usable, else cpu)")
-      ("threads", po::value(&opt.threads)->default_value(opt.threads),
-       "worker threads for the cpu backend (0 = all hardware threads)")
-      ("repeat", po::value(&opt.repeat)->default_value(opt.repeat), "timed estimates")
-      ("warmup", po::value(&opt.warmup)->default_value(opt.warmup), "untimed estimates first")
-      ("json", po::bool_switch(&opt.json), "print one JSON object as the last line of stdout")
-      ("compare", po::bool_switch(&opt.compare),
-       "run every available backend (reference, cpu, cuda) on the same scene in this process and "
-       "print a table: times, pose combinations per second, ratio to the reference, agreement")
-      ("cos", po::value(&opt.cos),
-       "instead of --scene: the scaling scene with this many other vehicles (e.g. 1 3 10 30 100)")
-      ("report", po::bool_switch(&opt.report),
-       "print a readable summary of the result (per-object shares, collision times, escape routes)");
+  desc.add_options()("help,h", "show this help and exit")(
+      "scene", po::value(&opt.scene)->default_value(opt.scene), "S1 or S2")(
+      "scene-file", po::value(&opt.scene_file),
+      "replay a scene file instead (written by sumo-criticality --record-scenes)")(
+      "profiles", po::value(&opt.profiles)->default_value(opt.profiles),
+      "acceleration/slip profiles per object (paper: 6 or 5)")(
+      "backend", po::value(&opt.backend)->default_value(opt.backend),
+      "reference (plain literal algorithm, one thread), cpu (fast path), cuda (GPU) or auto (cuda "
+      "when usable, else cpu)")("threads", po::value(&opt.threads)->default_value(opt.threads),
+                                "worker threads for the cpu backend (0 = all hardware threads)")(
+      "repeat", po::value(&opt.repeat)->default_value(opt.repeat), "timed estimates")(
+      "warmup", po::value(&opt.warmup)->default_value(opt.warmup), "untimed estimates first")(
+      "json", po::bool_switch(&opt.json), "print one JSON object as the last line of stdout")(
+      "compare", po::bool_switch(&opt.compare),
+      "run every available backend (reference, cpu, cuda) on the same scene in this process and "
+      "print a table: times, pose combinations per second, ratio to the reference, agreement")(
+      "cos", po::value(&opt.cos),
+      "instead of --scene: the scaling scene with this many other vehicles (e.g. 1 3 10 30 100)")(
+      "report", po::bool_switch(&opt.report),
+      "print a readable summary of the result (per-object shares, collision times, escape routes)");
   try {
     po::variables_map vm;
     po::store(po::parse_command_line(argc, argv, desc), vm);
     if (vm.count("help")) {
-      std::cout << desc << "\nExample: criticality-bench --scene S2 --backend reference --repeat 3\n";
+      std::cout << desc
+                << "\nExample: criticality-bench --scene S2 --backend reference --repeat 3\n";
       return 0;
     }
     po::notify(vm);
-    if (opt.repeat < 1) throw InputError("--repeat = " + std::to_string(opt.repeat) + ": must be >= 1");
-    if (opt.warmup < 0) throw InputError("--warmup = " + std::to_string(opt.warmup) + ": must be >= 0");
+    if (opt.repeat < 1)
+      throw InputError("--repeat = " + std::to_string(opt.repeat) + ": must be >= 1");
+    if (opt.warmup < 0)
+      throw InputError("--warmup = " + std::to_string(opt.warmup) + ": must be >= 0");
 
     Params params;
     params.profiles = opt.profiles;
     EstimatorOptions eopt;
     eopt.backend = ParseBackend(opt.backend);
     eopt.threads = opt.threads;
-    if (opt.cos > 100000) throw InputError("--cos = " + std::to_string(opt.cos) + ": at most 100000");
+    if (opt.cos > 100000)
+      throw InputError("--cos = " + std::to_string(opt.cos) + ": at most 100000");
     Scene scene;
     if (!opt.scene_file.empty()) {
       scene = ReadSceneFile(opt.scene_file);
@@ -274,9 +285,10 @@ int main(int argc, char** argv) {
                 c.ego_trajectories, c.co_trajectories, c.time_steps,
                 static_cast<unsigned long long>(c.pose_combinations));
     std::printf("  p_collision %.6f\n", last.p_collision);
-    std::printf("  time per estimate over %d runs: median %.3f ms, min %.3f ms "
-                "(median trajectories %.3f, collisions %.3f, risk %.3f ms)\n",
-                opt.repeat, median, min, Median(traj), Median(coll), Median(risk));
+    std::printf(
+        "  time per estimate over %d runs: median %.3f ms, min %.3f ms "
+        "(median trajectories %.3f, collisions %.3f, risk %.3f ms)\n",
+        opt.repeat, median, min, Median(traj), Median(coll), Median(risk));
     if (opt.report) PrintReport(scene, params, last);
     if (opt.json) {
       std::printf(

@@ -76,10 +76,10 @@ Scene PaperSceneS2() {
 Scene ScalingScene(int n) {
   Scene s = EgoOnRoad();
   for (int k = 0; k < n; ++k) {
-    const int lane = k % 3 - 1;                       // right, own, left, right, ...
-    const int rank = k / 3;                           // 0, 0, 0, 1, 1, 1, ...
+    const int lane = k % 3 - 1;  // right, own, left, right, ...
+    const int rank = k / 3;      // 0, 0, 0, 1, 1, 1, ...
     const double ahead = (rank % 2 == 0 ? 1.0 : -1.0) * (15.0 + 12.0 * (rank / 2)) + 3.0 * lane;
-    const double speed = 20.0 + (k * 7 % 11);         // 20..30 m/s, deterministic
+    const double speed = 20.0 + (k * 7 % 11);  // 20..30 m/s, deterministic
     s.vehicles.push_back(Car("co" + std::to_string(k), lane, ahead, speed));
   }
   return s;

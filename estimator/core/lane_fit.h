@@ -20,8 +20,7 @@ struct Parabola {
 /** Pointwise blend (1 - f) * p + f * q: the curve "parallel" to two dividers that passes at
  *  fraction f across the lane they delimit (used for path sections, paper Sec. IV-B-2b). */
 CRIT_HD Parabola Blend(const Parabola& p, const Parabola& q, double f) {
-  return Parabola{(1.0 - f) * p.a + f * q.a, (1.0 - f) * p.b + f * q.b,
-                  (1.0 - f) * p.c + f * q.c};
+  return Parabola{(1.0 - f) * p.a + f * q.a, (1.0 - f) * p.b + f * q.b, (1.0 - f) * p.c + f * q.c};
 }
 
 /** Relative pivot size below which the system counts as singular. */

@@ -19,10 +19,10 @@ CRIT_HD StateDerivative OneTrackDerivative(const VehicleParams& p, const MotionS
   const double cf = p.cf_npr, cr = p.cr_npr, lf = p.lf_m, lr = p.lr_m;
   StateDerivative d;
   d.v_dot = v_dot;
-  d.beta_dot = -(cf + cr) / (m * v) * s.beta + ((cr * lr - cf * lf) / (m * v * v) - 1.0) * s.yaw_rate +
-               cf / (m * v) * steer;
-  d.yaw_acc = (cr * lr - cf * lf) / iz * s.beta - (cf * lf * lf + cr * lr * lr) / (iz * v) * s.yaw_rate +
-              cf * lf / iz * steer;
+  d.beta_dot = -(cf + cr) / (m * v) * s.beta +
+               ((cr * lr - cf * lf) / (m * v * v) - 1.0) * s.yaw_rate + cf / (m * v) * steer;
+  d.yaw_acc = (cr * lr - cf * lf) / iz * s.beta -
+              (cf * lf * lf + cr * lr * lr) / (iz * v) * s.yaw_rate + cf * lf / iz * steer;
   return d;
 }
 

@@ -17,8 +17,8 @@ CRIT_HD double DeviationScore(double deviation, double scale) {
   return 1.0 / (1.0 + std::fabs(deviation) / scale);
 }
 
-CRIT_HD double HypothesisScore(double w_acc, double n_acc, double w_str, double d_str,
-                               double c_com, double c_cou) {
+CRIT_HD double HypothesisScore(double w_acc, double n_acc, double w_str, double d_str, double c_com,
+                               double c_cou) {
   return (w_acc * n_acc + w_str * d_str) / (c_com * c_cou);
 }
 

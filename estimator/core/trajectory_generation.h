@@ -39,7 +39,8 @@ struct SimulationState {
   int instant{0};     ///< current sample instant (path section)
 };
 
-CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h, const SimulationConfig& cfg) {
+CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h,
+                                               const SimulationConfig& cfg) {
   SimulationState st;
   st.s.v = h.v0;
   st.s.beta = h.beta0;
@@ -66,7 +67,8 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
   for (int n = n_begin; n < n_end; ++n) {
     const double t = n * tau;
     int k = st->instant;  // explicit bounds keep the compiler's array-bounds check quiet
-    while (k >= 0 && k < h.n_instants - 1 && k < kMaxSampleInstants - 1 && t >= h.instant_time[k]) ++k;
+    while (k >= 0 && k < h.n_instants - 1 && k < kMaxSampleInstants - 1 && t >= h.instant_time[k])
+      ++k;
     st->instant = k;
     const Parabola& section = h.section[st->instant][SectionOfPath(h, path, st->instant)];
     // Trig of yaw and sideslip once per step; the course by the angle-sum identities.
@@ -83,7 +85,8 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
         cached_factor = LongitudinalForceFactor(longitudinal);
       }
       if (kinematic) {
-        d = KinematicSingleTrack(h.vehicle, st->steer, h.vehicle.friction * kGravity * cached_factor, &s);
+        d = KinematicSingleTrack(h.vehicle, st->steer,
+                                 h.vehicle.friction * kGravity * cached_factor, &s);
       } else {
         d = TwoTrackDerivative(h.vehicle, s, st->steer, cached_factor, cb, sb);
       }

@@ -97,7 +97,8 @@ CRIT_HD ChassisForces TwoTrackForces(const VehicleParams& p, const MotionState& 
 /** [dv, dbeta, ddpsi] of the two-track model. Singular at v = 0 (see SeamSpeed). */
 CRIT_HD ChassisForces TwoTrackForces(const VehicleParams& p, const MotionState& s, double steer,
                                      double slip) {
-  return TwoTrackForces(p, s, steer, LongitudinalForceFactor(slip), std::cos(s.beta), std::sin(s.beta));
+  return TwoTrackForces(p, s, steer, LongitudinalForceFactor(slip), std::cos(s.beta),
+                        std::sin(s.beta));
 }
 
 /** [dv, dbeta, ddpsi]; cb, sb = cos/sin(s.beta), fx_factor = LongitudinalForceFactor(slip). */

@@ -47,8 +47,9 @@ int Power(int base, int exp) {
 
 CpuBackend::CpuBackend(int threads) : threads_(internal::ResolveThreads(threads)) {}
 
-void CpuBackend::FinishSpan(const TrajectoryStore& t, std::vector<double>* c, std::vector<double>* s,
-                            BlockBounds* b, int tr, int n0, int n1, int q0, int q1) const {
+void CpuBackend::FinishSpan(const TrajectoryStore& t, std::vector<double>* c,
+                            std::vector<double>* s, BlockBounds* b, int tr, int n0, int n1, int q0,
+                            int q1) const {
   const size_t base = t.Offset(tr);
   for (int n = n0; n < n1; ++n) {
     (*c)[base + n] = std::cos(t.yaw[base + n]);
@@ -110,7 +111,7 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   // bounds), then copying that span to the node's other paths.
   auto node = [&](auto&& self, int profile, int k, int group, core::SimulationState st) -> void {
     if (k >= core::kMaxSampleInstants) return;  // never: K <= kMaxSampleInstants
-    const int width = Power(L, K - 1 - k);  // paths below this node
+    const int width = Power(L, K - 1 - k);      // paths below this node
     const int first = profile * ego.n_paths + group * width;
     const size_t at = ego_.Offset(first);
     const int n0 = boundary_[k], n1 = boundary_[k + 1];
@@ -169,8 +170,8 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
     if (k + 1 < K) {
       for (int c = 0; c < L; ++c) box.Add(self(self, profile, k + 1, group * L + c));
     }
-    StoreCircle(box, static_cast<size_t>(profile) * nodes + node_offset_[k] + group, &node_bounds_.cx,
-                &node_bounds_.cy, &node_bounds_.r);
+    StoreCircle(box, static_cast<size_t>(profile) * nodes + node_offset_[k] + group,
+                &node_bounds_.cx, &node_bounds_.cy, &node_bounds_.r);
     return box;
   };
   internal::ParallelFor(ego.n_profiles * L, threads_, [&](int begin, int end) {
@@ -216,9 +217,9 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
       for (int n = block_begin_[q]; n < block_begin_[q + 1]; ++n) {
         const double dx = co_.x[cj + n] - ego_.x[ei + n], dy = co_.y[cj + n] - ego_.y[ei + n];
         if (dx * dx + dy * dy > reach2) continue;
-        const core::OrientedBox<double> a{ego_.x[ei + n], ego_.y[ei + n], ego_cos_[ei + n],
-                                          ego_sin_[ei + n], ego_hl, ego_hw};
-        const core::OrientedBox<double> b{co_.x[cj + n], co_.y[cj + n], co_cos_[cj + n],
+        const core::OrientedBox<double> a{ego_.x[ei + n],   ego_.y[ei + n], ego_cos_[ei + n],
+                                          ego_sin_[ei + n], ego_hl,         ego_hw};
+        const core::OrientedBox<double> b{co_.x[cj + n],   co_.y[cj + n],  co_cos_[cj + n],
                                           co_sin_[cj + n], co.half_length, co.half_width};
         if (core::BoxesOverlap(a, b)) return n + 1;
       }
@@ -240,7 +241,8 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
         // Swept bounds: nothing below this node comes near this CO trajectory.
         const size_t nb = static_cast<size_t>(profile) * nodes + node_offset_[k] + group;
         const size_t tb = static_cast<size_t>(j) * K + k;
-        const double sx = node_bounds_.cx[nb] - co_tail_.cx[tb], sy = node_bounds_.cy[nb] - co_tail_.cy[tb];
+        const double sx = node_bounds_.cx[nb] - co_tail_.cx[tb],
+                     sy = node_bounds_.cy[nb] - co_tail_.cy[tb];
         const double sr = node_bounds_.r[nb] + co_tail_.r[tb] + reach;
         if (sx * sx + sy * sy > sr * sr) return;
         const int width = Power(L, K - 1 - k);
@@ -248,7 +250,8 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
         const int hit = span_hit(first, j, k, reach);
         if (hit > 0) {
           for (int p = 0; p < width; ++p) {
-            (*first_step)[static_cast<size_t>(first + p) * n_co + j] = static_cast<std::int16_t>(hit);
+            (*first_step)[static_cast<size_t>(first + p) * n_co + j] =
+                static_cast<std::int16_t>(hit);
           }
           return;
         }

@@ -42,8 +42,9 @@ class CpuBackend final : public EstimatorBackend {
   };
   void ComputeBlockBounds(const internal::TrajectoryStore& t, BlockBounds* b) const;
   // cos/sin of steps [n0, n1) and bounds of blocks [q0, q1) of one trajectory.
-  void FinishSpan(const internal::TrajectoryStore& t, std::vector<double>* c, std::vector<double>* s,
-                  BlockBounds* b, int trajectory, int n0, int n1, int q0, int q1) const;
+  void FinishSpan(const internal::TrajectoryStore& t, std::vector<double>* c,
+                  std::vector<double>* s, BlockBounds* b, int trajectory, int n0, int n1, int q0,
+                  int q1) const;
 
   int threads_;
   internal::TrajectoryStore ego_;

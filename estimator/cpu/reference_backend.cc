@@ -10,8 +10,8 @@ void ReferenceBackend::GenerateTrajectories(const internal::Problem& pb) {
   ego_.Resize(pb.EgoTrajectories(), steps);
   for (int i = 0; i < pb.EgoTrajectories(); ++i) {
     const size_t at = ego_.Offset(i);
-    core::SimulateHypothesis(pb.ego, pb.sim, i / pb.ego.n_paths, i % pb.ego.n_paths,
-                             &ego_.x[at], &ego_.y[at], &ego_.yaw[at]);
+    core::SimulateHypothesis(pb.ego, pb.sim, i / pb.ego.n_paths, i % pb.ego.n_paths, &ego_.x[at],
+                             &ego_.y[at], &ego_.yaw[at]);
   }
   co_.Resize(pb.CoTrajectories(), steps);
   for (size_t o = 0; o < pb.cos.size(); ++o) {
@@ -34,10 +34,10 @@ void ReferenceBackend::RecognizeCollisions(const internal::Problem& pb,
       std::int16_t first = 0;
       for (int n = 0; n < steps; ++n) {
         const size_t a = ego_.Offset(i) + n, b = co_.Offset(j) + n;
-        const auto box_ego = core::MakeBox(ego_.x[a], ego_.y[a], ego_.yaw[a], pb.ego.half_length,
-                                           pb.ego.half_width);
-        const auto box_co = core::MakeBox(co_.x[b], co_.y[b], co_.yaw[b], co.half_length,
-                                          co.half_width);
+        const auto box_ego =
+            core::MakeBox(ego_.x[a], ego_.y[a], ego_.yaw[a], pb.ego.half_length, pb.ego.half_width);
+        const auto box_co =
+            core::MakeBox(co_.x[b], co_.y[b], co_.yaw[b], co.half_length, co.half_width);
         if (core::BoxesOverlap(box_ego, box_co) && first == 0) {
           first = static_cast<std::int16_t>(n + 1);
         }

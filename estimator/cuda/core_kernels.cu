@@ -6,8 +6,8 @@
 namespace criticality::cuda {
 namespace {
 
-__global__ void OverlapKernel(const core::OrientedBox<double>* a, const core::OrientedBox<double>* b,
-                              int n, std::uint8_t* out) {
+__global__ void OverlapKernel(const core::OrientedBox<double>* a,
+                              const core::OrientedBox<double>* b, int n, std::uint8_t* out) {
   const int k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k < n) out[k] = core::BoxesOverlap(a[k], b[k]) ? 1 : 0;
 }
@@ -56,7 +56,8 @@ void SimulateOnDevice(const core::HypothesisSet& h, const core::SimulationConfig
   x->resize(n);
   y->resize(n);
   yaw->resize(n);
-  Check(cudaMemcpy(x->data(), d_x.ptr, n * sizeof(double), cudaMemcpyDeviceToHost), "after simulate kernel (x)");
+  Check(cudaMemcpy(x->data(), d_x.ptr, n * sizeof(double), cudaMemcpyDeviceToHost),
+        "after simulate kernel (x)");
   Check(cudaMemcpy(y->data(), d_y.ptr, n * sizeof(double), cudaMemcpyDeviceToHost), "copy y");
   Check(cudaMemcpy(yaw->data(), d_yaw.ptr, n * sizeof(double), cudaMemcpyDeviceToHost), "copy yaw");
 }

@@ -68,9 +68,9 @@ class DeviceArray {
 };
 
 __global__ void TrajectoryKernel(const core::HypothesisSet* sets, const int* co_object_of,
-                                 const int* co_offset, int n_ego, int n_co, core::SimulationConfig cfg,
-                                 double* ex, double* ey, double* eyaw, double* cx, double* cy,
-                                 double* cyaw) {
+                                 const int* co_offset, int n_ego, int n_co,
+                                 core::SimulationConfig cfg, double* ex, double* ey, double* eyaw,
+                                 double* cx, double* cy, double* cyaw) {
   const int g = blockIdx.x * blockDim.x + threadIdx.x;
   TrajectoryBody(g, sets, co_object_of, co_offset, n_ego, n_co, cfg, ex, ey, eyaw, cx, cy, cyaw);
 }
@@ -93,13 +93,17 @@ __global__ void RiskKernel(int n_ego, int n_co, int steps, int n_obj, const std:
                            const double* p_co, const int* object_of, RiskScratch w, double* ego_col,
                            char* ego_hit, double* by_step, double* by_object) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n_ego) RiskBody(i, n_co, steps, n_obj, first, p_co, object_of, w, ego_col, ego_hit, by_step, by_object);
+  if (i < n_ego)
+    RiskBody(i, n_co, steps, n_obj, first, p_co, object_of, w, ego_col, ego_hit, by_step,
+             by_object);
 }
 
-__global__ void ReduceKernel(int n_ego, int steps, int n_obj, const double* p_ego, const double* ego_col,
-                             const double* by_step, const double* by_object, double* out) {
+__global__ void ReduceKernel(int n_ego, int steps, int n_obj, const double* p_ego,
+                             const double* ego_col, const double* by_step, const double* by_object,
+                             double* out) {
   const int q = blockIdx.x * blockDim.x + threadIdx.x;
-  if (q <= steps + n_obj) ReduceBody(q, n_ego, steps, n_obj, p_ego, ego_col, by_step, by_object, out);
+  if (q <= steps + n_obj)
+    ReduceBody(q, n_ego, steps, n_obj, p_ego, ego_col, by_step, by_object, out);
 }
 
 double MsSince(std::chrono::steady_clock::time_point t0) {
@@ -135,20 +139,23 @@ class CudaBackend final : public EstimatorBackend {
     t = std::chrono::steady_clock::now();
     const int n_ego = pb.EgoTrajectories(), n_co = pb.CoTrajectories(), steps = pb.Steps();
     const int n_obj = static_cast<int>(pb.cos.size());
-    RiskScratch w{d_hist_.Reserve(static_cast<size_t>(n_ego) * (steps + 1), "cudaMalloc histogram"),
-                  d_events_.Reserve(static_cast<size_t>(n_ego) * n_co, "cudaMalloc events"),
-                  d_contrib_.Reserve(static_cast<size_t>(n_ego) * n_co, "cudaMalloc contributions"),
-                  d_mass_.Reserve(static_cast<size_t>(n_ego) * std::max(n_obj, 1), "cudaMalloc hit mass")};
+    RiskScratch w{
+        d_hist_.Reserve(static_cast<size_t>(n_ego) * (steps + 1), "cudaMalloc histogram"),
+        d_events_.Reserve(static_cast<size_t>(n_ego) * n_co, "cudaMalloc events"),
+        d_contrib_.Reserve(static_cast<size_t>(n_ego) * n_co, "cudaMalloc contributions"),
+        d_mass_.Reserve(static_cast<size_t>(n_ego) * std::max(n_obj, 1), "cudaMalloc hit mass")};
     double* ego_col = d_ego_col_.Reserve(n_ego, "cudaMalloc ego collision probability");
     char* ego_hit = d_ego_hit_.Reserve(n_ego, "cudaMalloc ego hit");
     double* by_step = d_by_step_.Reserve(static_cast<size_t>(n_ego) * steps, "cudaMalloc by step");
-    double* by_obj = d_by_obj_.Reserve(static_cast<size_t>(n_ego) * std::max(n_obj, 1), "cudaMalloc by object");
+    double* by_obj =
+        d_by_obj_.Reserve(static_cast<size_t>(n_ego) * std::max(n_obj, 1), "cudaMalloc by object");
     double* out = d_out_.Reserve(steps + n_obj + 1, "cudaMalloc risk output");
-    RiskKernel<<<Blocks(n_ego), kThreads>>>(n_ego, n_co, steps, n_obj, d_first_.get(), d_p_co_.get(),
-                                             d_object_of_.get(), w, ego_col, ego_hit, by_step, by_obj);
+    RiskKernel<<<Blocks(n_ego), kThreads>>>(n_ego, n_co, steps, n_obj, d_first_.get(),
+                                            d_p_co_.get(), d_object_of_.get(), w, ego_col, ego_hit,
+                                            by_step, by_obj);
     Check(cudaGetLastError(), "after risk kernel launch");
-    ReduceKernel<<<Blocks(steps + n_obj + 1), kThreads>>>(n_ego, steps, n_obj, d_p_ego_.get(), ego_col,
-                                                           by_step, by_obj, out);
+    ReduceKernel<<<Blocks(steps + n_obj + 1), kThreads>>>(n_ego, steps, n_obj, d_p_ego_.get(),
+                                                          ego_col, by_step, by_obj, out);
     Check(cudaGetLastError(), "after reduction kernel launch");
     std::vector<double> sums;
     d_out_.Download(&sums, steps + n_obj + 1, "after risk kernels (copy sums)");
@@ -208,14 +215,15 @@ class CudaBackend final : public EstimatorBackend {
     double* cx = d_cx_.Reserve(nc, "cudaMalloc CO x");
     double* cy = d_cy_.Reserve(nc, "cudaMalloc CO y");
     double* cyaw = d_cyaw_.Reserve(nc, "cudaMalloc CO yaw");
-    TrajectoryKernel<<<Blocks(n_ego + n_co), kThreads>>>(d_sets_.get(), d_object_of_.get(), d_offset_.get(),
-                                                          n_ego, n_co, pb.sim, ex, ey, eyaw, cx, cy, cyaw);
+    TrajectoryKernel<<<Blocks(n_ego + n_co), kThreads>>>(d_sets_.get(), d_object_of_.get(),
+                                                         d_offset_.get(), n_ego, n_co, pb.sim, ex,
+                                                         ey, eyaw, cx, cy, cyaw);
     Check(cudaGetLastError(), "after trajectory kernel launch");
     TrigKernel<<<Blocks(ne), kThreads>>>(eyaw, ne, d_ec_.Reserve(ne, "cudaMalloc ego cos"),
-                                          d_es_.Reserve(ne, "cudaMalloc ego sin"));
+                                         d_es_.Reserve(ne, "cudaMalloc ego sin"));
     Check(cudaGetLastError(), "after ego trig kernel launch");
     TrigKernel<<<Blocks(nc), kThreads>>>(cyaw, nc, d_cc_.Reserve(nc, "cudaMalloc CO cos"),
-                                          d_cs_.Reserve(nc, "cudaMalloc CO sin"));
+                                         d_cs_.Reserve(nc, "cudaMalloc CO sin"));
     Check(cudaGetLastError(), "after CO trig kernel launch");
   }
 

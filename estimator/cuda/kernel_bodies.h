@@ -25,17 +25,18 @@ struct Poses {
 };
 
 struct RiskScratch {
-  int* histogram;   ///< n_ego x (steps + 1)
-  int* events;      ///< n_ego x n_co
-  double* contrib;  ///< n_ego x n_co
-  double* hit_mass; ///< n_ego x n_obj
+  int* histogram;    ///< n_ego x (steps + 1)
+  int* events;       ///< n_ego x n_co
+  double* contrib;   ///< n_ego x n_co
+  double* hit_mass;  ///< n_ego x n_obj
 };
 
 /** Thread g < n_ego: ego hypothesis g; else CO trajectory g - n_ego. sets[0] is the ego's,
  *  sets[1 + o] CO o's. */
 CRIT_HD void TrajectoryBody(int g, const core::HypothesisSet* sets, const int* co_object_of,
-                            const int* co_offset, int n_ego, int n_co, const core::SimulationConfig& cfg,
-                            double* ex, double* ey, double* eyaw, double* cx, double* cy, double* cyaw) {
+                            const int* co_offset, int n_ego, int n_co,
+                            const core::SimulationConfig& cfg, double* ex, double* ey, double* eyaw,
+                            double* cx, double* cy, double* cyaw) {
   if (g < n_ego) {
     const core::HypothesisSet& h = sets[0];
     core::SimulateHypothesis(h, cfg, g / h.n_paths, g % h.n_paths, ex + g, ey + g, eyaw + g, n_ego);
@@ -55,9 +56,9 @@ CRIT_HD void TrigBody(size_t k, const double* yaw, double* c, double* s) {
 
 /** Thread k = i * n_co + j: the first colliding step (1-based, 0 = none) of ego trajectory i
  *  and CO trajectory j, with a bounding-circle test before the exact one and early exit. */
-CRIT_HD void CollisionBody(size_t k, int n_ego, int n_co, int steps, const Poses& ego, const Poses& co,
-                           double ego_hl, double ego_hw, const double* co_hl, const double* co_hw,
-                           std::int16_t* first) {
+CRIT_HD void CollisionBody(size_t k, int n_ego, int n_co, int steps, const Poses& ego,
+                           const Poses& co, double ego_hl, double ego_hw, const double* co_hl,
+                           const double* co_hw, std::int16_t* first) {
   const int i = static_cast<int>(k / n_co), j = static_cast<int>(k % n_co);
   const double reach =
       core::BoundingRadius(ego_hl, ego_hw) + core::BoundingRadius(co_hl[j], co_hw[j]) + 1e-9;
@@ -81,8 +82,8 @@ CRIT_HD void CollisionBody(size_t k, int n_ego, int n_co, int steps, const Poses
  *  sort by step, stable in j), the paper's chronological approximation, and its split over
  *  steps and objects (not yet weighted by p_EGO). */
 CRIT_HD void RiskBody(int i, int n_co, int steps, int n_obj, const std::int16_t* first,
-                      const double* p_co, const int* object_of, const RiskScratch& w, double* ego_col,
-                      char* ego_hit, double* by_step, double* by_object) {
+                      const double* p_co, const int* object_of, const RiskScratch& w,
+                      double* ego_col, char* ego_hit, double* by_step, double* by_object) {
   const std::int16_t* row = first + static_cast<size_t>(i) * n_co;
   int* hist = w.histogram + static_cast<size_t>(i) * (steps + 1);
   int* ev = w.events + static_cast<size_t>(i) * n_co;
@@ -109,8 +110,8 @@ CRIT_HD void RiskBody(int i, int n_co, int steps, int n_obj, const std::int16_t*
   }
   for (int n = 0; n < steps; ++n) step_row[n] = 0.0;
   ego_hit[i] = total > 0;
-  ego_col[i] = total > 0 ? core::ChronologicalCollisionProbability(total, ev, p_co, object_of, n_obj,
-                                                                   mass, contrib)
+  ego_col[i] = total > 0 ? core::ChronologicalCollisionProbability(total, ev, p_co, object_of,
+                                                                   n_obj, mass, contrib)
                          : 0.0;
   for (int e = 0; e < total; ++e) {
     step_row[row[ev[e]] - 1] += contrib[e];
@@ -120,8 +121,9 @@ CRIT_HD void RiskBody(int i, int n_co, int steps, int n_obj, const std::int16_t*
 
 /** Thread q: output q (steps, then objects, then p_cra), summed over colliding ego hypotheses
  *  in ego order, as the CPU does. */
-CRIT_HD void ReduceBody(int q, int n_ego, int steps, int n_obj, const double* p_ego, const double* ego_col,
-                        const double* by_step, const double* by_object, double* out) {
+CRIT_HD void ReduceBody(int q, int n_ego, int steps, int n_obj, const double* p_ego,
+                        const double* ego_col, const double* by_step, const double* by_object,
+                        double* out) {
   double sum = 0.0;
   for (int i = 0; i < n_ego; ++i) {
     if (ego_col[i] == 0.0) continue;

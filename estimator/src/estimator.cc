@@ -35,10 +35,14 @@ Backend ParseBackend(const std::string& name) {
 
 std::string BackendName(Backend backend) {
   switch (backend) {
-    case Backend::kReference: return "reference";
-    case Backend::kCpu: return "cpu";
-    case Backend::kCuda: return "cuda";
-    case Backend::kAuto: return "auto";
+    case Backend::kReference:
+      return "reference";
+    case Backend::kCpu:
+      return "cpu";
+    case Backend::kCuda:
+      return "cuda";
+    case Backend::kAuto:
+      return "auto";
   }
   return "unknown";
 }
@@ -84,9 +88,13 @@ Estimator::Estimator(const Params& params, const EstimatorOptions& options)
     }
   }
   switch (options_.backend) {
-    case Backend::kReference: backend_ = std::make_unique<ReferenceBackend>(); break;
+    case Backend::kReference:
+      backend_ = std::make_unique<ReferenceBackend>();
+      break;
     case Backend::kCpu:
-    case Backend::kAuto: backend_ = std::make_unique<CpuBackend>(options_.threads); break;
+    case Backend::kAuto:
+      backend_ = std::make_unique<CpuBackend>(options_.threads);
+      break;
     case Backend::kCuda:
       if (!CudaUsable(&why)) {
         throw InputError("backend cuda: " + why + "; use --backend cpu or auto");

@@ -112,8 +112,8 @@ std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool 
     }
     mean /= n_inst;
     scores[path].d_str = core::DeviationScore(mean, p.path_score_scale_m);
-    scores[path].penalty = (1.0 + p.complexity_penalty * changes) *
-                           (counter ? p.counter_traffic_penalty : 1.0);
+    scores[path].penalty =
+        (1.0 + p.complexity_penalty * changes) * (counter ? p.counter_traffic_penalty : 1.0);
   }
   return scores;
 }
@@ -162,9 +162,9 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   Problem pb;
   pb.sim.tau = params.step_s;
   pb.sim.n_steps = params.TimeSteps();
-  pb.sim.controller = core::ControllerLimits{params.max_steer_rad, params.max_steer_rate_radps,
-                                             params.preview_s_per_mps, params.preview_min_s,
-                                             params.preview_max_s};
+  pb.sim.controller =
+      core::ControllerLimits{params.max_steer_rad, params.max_steer_rate_radps,
+                             params.preview_s_per_mps, params.preview_min_s, params.preview_max_s};
 
   // Street data: the ego's lanes (virtual own lane when missing), fitted in its frame.
   const LaneSet ego_lanes = CompleteEgoLanes(scene.ego, params);
@@ -175,7 +175,8 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     core::HypothesisSet& h = pb.ego;
     h.model = core::MotionModelKind::kTwoTrack;
     SetPose(scene.ego.state, scene.ego.length_m, scene.ego.width_m, &h);
-    h.vehicle = VehicleModelParams(scene.ego.length_m, scene.ego.width_m, scene.ego.height_m, params);
+    h.vehicle =
+        VehicleModelParams(scene.ego.length_m, scene.ego.width_m, scene.ego.height_m, params);
     h.seam_speed = core::SeamSpeed(h.vehicle, params.step_s, params.euler_stability_factor);
     std::vector<double> n_acc;
     SetVehicleProfiles(params, &h, &n_acc);
@@ -230,9 +231,9 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     h.max_speed = params.pedestrian_max_speed_mps;
     h.n_profiles = params.profiles;
     h.n_paths = params.pedestrian_headings;
-    const double scale = params.accel_score_scale *
-                         std::fmax(std::fabs(params.pedestrian_accel_min_mps2),
-                                   std::fabs(params.pedestrian_accel_max_mps2));
+    const double scale =
+        params.accel_score_scale * std::fmax(std::fabs(params.pedestrian_accel_min_mps2),
+                                             std::fabs(params.pedestrian_accel_max_mps2));
     std::vector<double> n_acc;
     for (int k = 0; k < h.n_profiles; ++k) {
       h.profile_target[k] = core::EquallySpaced(k, h.n_profiles, params.pedestrian_accel_min_mps2,
@@ -264,8 +265,8 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   pb.counts.pose_combinations = static_cast<std::uint64_t>(pb.counts.ego_trajectories) *
                                 static_cast<std::uint64_t>(offset) *
                                 static_cast<std::uint64_t>(pb.sim.n_steps);
-  const std::uint64_t bytes = WorkloadBytes(pb.counts.ego_trajectories, offset, pb.sim.n_steps,
-                                            pb.cos.size());
+  const std::uint64_t bytes =
+      WorkloadBytes(pb.counts.ego_trajectories, offset, pb.sim.n_steps, pb.cos.size());
   if (bytes > params.max_memory_bytes) {
     std::ostringstream msg;
     msg << "workload too large: " << pb.counts.ego_trajectories << " ego x " << offset
@@ -276,7 +277,8 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   }
   pb.co_object_of.resize(offset);
   for (size_t o = 0; o < pb.cos.size(); ++o) {
-    for (int j = pb.co_offset[o]; j < pb.co_offset[o + 1]; ++j) pb.co_object_of[j] = static_cast<int>(o);
+    for (int j = pb.co_offset[o]; j < pb.co_offset[o + 1]; ++j)
+      pb.co_object_of[j] = static_cast<int>(o);
   }
   return pb;
 }

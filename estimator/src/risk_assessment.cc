@@ -45,7 +45,8 @@ void AssessRisk(const Problem& pb, const Params& params, const std::int16_t* fir
           pb.co_object_of.data(), n_obj, hit_mass.data(), contribution.data());
       for (size_t e = 0; e < events.size(); ++e) {
         by_step[static_cast<size_t>(i) * steps + events[e].first - 1] += contribution[e];
-        by_object[static_cast<size_t>(i) * n_obj + pb.co_object_of[events[e].second]] += contribution[e];
+        by_object[static_cast<size_t>(i) * n_obj + pb.co_object_of[events[e].second]] +=
+            contribution[e];
       }
     }
   });
@@ -80,10 +81,10 @@ void FillEscapeRoutes(const Problem& pb, const Params& params, const std::vector
     if (!ego_hit[i]) free.push_back(i);
   }
   result->collision_free_ego_trajectories = static_cast<int>(free.size());
-  std::stable_sort(free.begin(), free.end(), [&](int a, int b) {
-    return pb.ego_probability[a] > pb.ego_probability[b];
-  });
-  if (static_cast<int>(free.size()) > params.max_escape_routes) free.resize(params.max_escape_routes);
+  std::stable_sort(free.begin(), free.end(),
+                   [&](int a, int b) { return pb.ego_probability[a] > pb.ego_probability[b]; });
+  if (static_cast<int>(free.size()) > params.max_escape_routes)
+    free.resize(params.max_escape_routes);
   result->escape_routes.clear();
   for (int i : free) {
     EscapeRoute r;

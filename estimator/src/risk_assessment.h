@@ -19,7 +19,7 @@ void AssessRisk(const Problem& problem, const Params& params, const std::int16_t
 
 /** Escape routes (collision-free ego hypotheses, most probable first) and their count, from
  *  which ego hypotheses collide with any CO hypothesis. */
-void FillEscapeRoutes(const Problem& problem, const Params& params, const std::vector<char>& ego_hit,
-                      Result* result);
+void FillEscapeRoutes(const Problem& problem, const Params& params,
+                      const std::vector<char>& ego_hit, Result* result);
 
 }  // namespace criticality::internal

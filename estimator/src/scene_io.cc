@@ -16,8 +16,10 @@ void WriteState(std::ostream& out, const ObjectState& s) {
 }
 
 void WriteHeight(std::ostream& out, const std::optional<double>& h) {
-  if (h) out << ' ' << *h;
-  else out << " -";
+  if (h)
+    out << ' ' << *h;
+  else
+    out << " -";
 }
 
 void WriteLanes(std::ostream& out, const LaneSet& lanes) {
@@ -148,7 +150,8 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       scene.pedestrians.push_back(std::move(p));
       lanes = nullptr;
     } else if (kind == "lane") {
-      if (!lanes) throw InputError(r.where + ": 'lane' must follow an ego or a vehicle with LANES 1");
+      if (!lanes)
+        throw InputError(r.where + ": 'lane' must follow an ego or a vehicle with LANES 1");
       const std::string which = r.Word();
       Lane lane;
       lane.counter_traffic = r.Num() != 0.0;
@@ -158,12 +161,17 @@ Scene ReadScene(std::istream& in, const std::string& source) {
           p.y = r.Num();
         }
       }
-      if (which == "own") lanes->own = lane;
-      else if (which == "left") lanes->left = lane;
-      else if (which == "right") lanes->right = lane;
-      else throw InputError(r.where + ": lane '" + which + "' must be own, left or right");
+      if (which == "own")
+        lanes->own = lane;
+      else if (which == "left")
+        lanes->left = lane;
+      else if (which == "right")
+        lanes->right = lane;
+      else
+        throw InputError(r.where + ": lane '" + which + "' must be own, left or right");
     } else {
-      throw InputError(r.where + ": unknown record '" + kind + "' (ego, vehicle, pedestrian, lane)");
+      throw InputError(r.where + ": unknown record '" + kind +
+                       "' (ego, vehicle, pedestrian, lane)");
     }
     if (r.next != r.words.size()) throw InputError(r.where + ": too many values");
   }

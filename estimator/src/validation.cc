@@ -42,7 +42,8 @@ void ValidateState(const std::string& where, const ObjectState& s) {
   RequireFinite(where + ".accel_mps2", s.accel_mps2);
   RequireFinite(where + ".yaw_rate_radps", s.yaw_rate_radps);
   RequireFinite(where + ".sideslip_rad", s.sideslip_rad);
-  if (std::fabs(s.sideslip_rad) > 1.0) Fail(where + ".sideslip_rad", s.sideslip_rad, "must be within +-1 rad");
+  if (std::fabs(s.sideslip_rad) > 1.0)
+    Fail(where + ".sideslip_rad", s.sideslip_rad, "must be within +-1 rad");
 }
 
 void ValidateSize(const std::string& where, double length, double width,
@@ -56,28 +57,31 @@ void ValidateSize(const std::string& where, double length, double width,
 
 }  // namespace
 
-int Params::TimeSteps() const {
-  return static_cast<int>(std::llround(horizon_s / step_s));
-}
+int Params::TimeSteps() const { return static_cast<int>(std::llround(horizon_s / step_s)); }
 
 void ValidateParams(const Params& p) {
   RequirePositive("params.horizon_s", p.horizon_s);
   RequirePositive("params.step_s", p.step_s);
   if (p.step_s > p.horizon_s) Fail("params.step_s", p.step_s, "must not exceed horizon_s");
   const double steps = p.horizon_s / p.step_s;
-  if (steps > 32767.0) Fail("params.horizon_s / params.step_s", steps, "must be at most 32767 steps");
+  if (steps > 32767.0)
+    Fail("params.horizon_s / params.step_s", steps, "must be at most 32767 steps");
   if (std::fabs(steps - std::round(steps)) > 1e-6 * steps) {
     Fail("params.horizon_s / params.step_s", steps, "must be a whole number of steps");
   }
   RequireRange("params.profiles", p.profiles, 3, core::kMaxProfiles);
   RequireFinite("params.vehicle_accel_min_mps2", p.vehicle_accel_min_mps2);
   RequireFinite("params.vehicle_accel_max_mps2", p.vehicle_accel_max_mps2);
-  if (!(p.vehicle_accel_min_mps2 < 0.0)) Fail("params.vehicle_accel_min_mps2", p.vehicle_accel_min_mps2, "must be < 0");
-  if (!(p.vehicle_accel_max_mps2 > 0.0)) Fail("params.vehicle_accel_max_mps2", p.vehicle_accel_max_mps2, "must be > 0");
+  if (!(p.vehicle_accel_min_mps2 < 0.0))
+    Fail("params.vehicle_accel_min_mps2", p.vehicle_accel_min_mps2, "must be < 0");
+  if (!(p.vehicle_accel_max_mps2 > 0.0))
+    Fail("params.vehicle_accel_max_mps2", p.vehicle_accel_max_mps2, "must be > 0");
   RequireFinite("params.ego_slip_min", p.ego_slip_min);
   RequireFinite("params.ego_slip_max", p.ego_slip_max);
-  if (!(p.ego_slip_min < 0.0 && p.ego_slip_min >= -1.0)) Fail("params.ego_slip_min", p.ego_slip_min, "must be in [-1, 0)");
-  if (!(p.ego_slip_max > 0.0 && p.ego_slip_max <= 1.0)) Fail("params.ego_slip_max", p.ego_slip_max, "must be in (0, 1]");
+  if (!(p.ego_slip_min < 0.0 && p.ego_slip_min >= -1.0))
+    Fail("params.ego_slip_min", p.ego_slip_min, "must be in [-1, 0)");
+  if (!(p.ego_slip_max > 0.0 && p.ego_slip_max <= 1.0))
+    Fail("params.ego_slip_max", p.ego_slip_max, "must be in (0, 1]");
   RequireFinite("params.latency_s", p.latency_s);
   if (p.latency_s < 0.0) Fail("params.latency_s", p.latency_s, "must be >= 0");
   RequirePositive("params.jerk_mps3", p.jerk_mps3);
@@ -86,18 +90,23 @@ void ValidateParams(const Params& p) {
   for (int k = 0; k < n_instants; ++k) {
     const std::string f = "params.path_sample_times_s[" + std::to_string(k) + "]";
     RequirePositive(f, p.path_sample_times_s[k]);
-    if (k > 0 && !(p.path_sample_times_s[k] > p.path_sample_times_s[k - 1])) Fail(f, p.path_sample_times_s[k], "must be greater than the previous sample time");
-    if (p.path_sample_times_s[k] > p.horizon_s + 1e-9) Fail(f, p.path_sample_times_s[k], "must not exceed horizon_s");
+    if (k > 0 && !(p.path_sample_times_s[k] > p.path_sample_times_s[k - 1]))
+      Fail(f, p.path_sample_times_s[k], "must be greater than the previous sample time");
+    if (p.path_sample_times_s[k] > p.horizon_s + 1e-9)
+      Fail(f, p.path_sample_times_s[k], "must not exceed horizon_s");
   }
   RequireRange("params.own_lane_samples", p.own_lane_samples, 1, 8);
   RequireRange("params.neighbour_lane_samples", p.neighbour_lane_samples, 0, 4);
   if (p.LateralSamplesThreeLanes() > core::kMaxLateralSamples) {
-    Fail("params.own_lane_samples + 2 * neighbour_lane_samples", p.LateralSamplesThreeLanes(), "must be at most " + std::to_string(core::kMaxLateralSamples));
+    Fail("params.own_lane_samples + 2 * neighbour_lane_samples", p.LateralSamplesThreeLanes(),
+         "must be at most " + std::to_string(core::kMaxLateralSamples));
   }
   RequireRange("params.pedestrian_headings", p.pedestrian_headings, 1, core::kMaxLateralSamples);
   RequireFinite("params.pedestrian_accel_min_mps2", p.pedestrian_accel_min_mps2);
   RequireFinite("params.pedestrian_accel_max_mps2", p.pedestrian_accel_max_mps2);
-  if (!(p.pedestrian_accel_min_mps2 < p.pedestrian_accel_max_mps2)) Fail("params.pedestrian_accel_min_mps2", p.pedestrian_accel_min_mps2, "must be < pedestrian_accel_max_mps2");
+  if (!(p.pedestrian_accel_min_mps2 < p.pedestrian_accel_max_mps2))
+    Fail("params.pedestrian_accel_min_mps2", p.pedestrian_accel_min_mps2,
+         "must be < pedestrian_accel_max_mps2");
   RequirePositive("params.pedestrian_max_speed_mps", p.pedestrian_max_speed_mps);
   RequirePositive("params.max_steer_rad", p.max_steer_rad);
   if (p.max_steer_rad > 1.2) Fail("params.max_steer_rad", p.max_steer_rad, "must be <= 1.2 rad");
@@ -106,9 +115,11 @@ void ValidateParams(const Params& p) {
   RequireFinite("params.preview_min_s", p.preview_min_s);
   if (p.preview_min_s < 0.0) Fail("params.preview_min_s", p.preview_min_s, "must be >= 0");
   RequireFinite("params.preview_max_s", p.preview_max_s);
-  if (p.preview_max_s < p.preview_min_s) Fail("params.preview_max_s", p.preview_max_s, "must be >= preview_min_s");
+  if (p.preview_max_s < p.preview_min_s)
+    Fail("params.preview_max_s", p.preview_max_s, "must be >= preview_min_s");
   RequireFinite("params.kinematic_below_mps", p.kinematic_below_mps);
-  if (p.kinematic_below_mps < 0.0) Fail("params.kinematic_below_mps", p.kinematic_below_mps, "must be >= 0");
+  if (p.kinematic_below_mps < 0.0)
+    Fail("params.kinematic_below_mps", p.kinematic_below_mps, "must be >= 0");
   RequirePositive("params.euler_stability_factor", p.euler_stability_factor);
   RequirePositive("params.friction", p.friction);
   if (p.friction > 2.0) Fail("params.friction", p.friction, "must be <= 2");
@@ -117,15 +128,19 @@ void ValidateParams(const Params& p) {
   RequireFinite("params.w_str", p.w_str);
   if (p.w_acc < 0.0) Fail("params.w_acc", p.w_acc, "must be >= 0");
   if (p.w_str < 0.0) Fail("params.w_str", p.w_str, "must be >= 0");
-  if (!(p.w_acc + p.w_str > 0.0)) Fail("params.w_acc + params.w_str", p.w_acc + p.w_str, "must be > 0");
+  if (!(p.w_acc + p.w_str > 0.0))
+    Fail("params.w_acc + params.w_str", p.w_acc + p.w_str, "must be > 0");
   RequirePositive("params.accel_score_scale", p.accel_score_scale);
   RequirePositive("params.path_score_scale_m", p.path_score_scale_m);
   RequirePositive("params.heading_score_scale_rad", p.heading_score_scale_rad);
   RequireFinite("params.complexity_penalty", p.complexity_penalty);
-  if (p.complexity_penalty < 0.0) Fail("params.complexity_penalty", p.complexity_penalty, "must be >= 0");
+  if (p.complexity_penalty < 0.0)
+    Fail("params.complexity_penalty", p.complexity_penalty, "must be >= 0");
   RequireFinite("params.counter_traffic_penalty", p.counter_traffic_penalty);
-  if (p.counter_traffic_penalty < 1.0) Fail("params.counter_traffic_penalty", p.counter_traffic_penalty, "must be >= 1");
-  if (p.max_escape_routes < 0) Fail("params.max_escape_routes", p.max_escape_routes, "must be >= 0");
+  if (p.counter_traffic_penalty < 1.0)
+    Fail("params.counter_traffic_penalty", p.counter_traffic_penalty, "must be >= 1");
+  if (p.max_escape_routes < 0)
+    Fail("params.max_escape_routes", p.max_escape_routes, "must be >= 0");
   if (p.max_memory_bytes == 0) Fail("params.max_memory_bytes", p.max_memory_bytes, "must be > 0");
 }
 
@@ -133,7 +148,8 @@ namespace internal {
 
 void ValidateScene(const Scene& scene, const Params& /*params*/) {
   const size_t objects = scene.vehicles.size() + scene.pedestrians.size();
-  if (objects > 65535) Fail("scene.vehicles + scene.pedestrians (count)", objects, "must be at most 65535 objects");
+  if (objects > 65535)
+    Fail("scene.vehicles + scene.pedestrians (count)", objects, "must be at most 65535 objects");
   ValidateState("scene.ego.state", scene.ego.state);
   ValidateSize("scene.ego", scene.ego.length_m, scene.ego.width_m, scene.ego.height_m);
   for (size_t i = 0; i < scene.vehicles.size(); ++i) {

@@ -6,14 +6,22 @@ namespace criticality {
 
 std::string VehicleClassName(VehicleClass c) {
   switch (c) {
-    case VehicleClass::kQuadricycle: return "quadricycle";
-    case VehicleClass::kSupermini: return "supermini";
-    case VehicleClass::kSmallFamily: return "small family car";
-    case VehicleClass::kLargeFamily: return "large family car";
-    case VehicleClass::kExecutive: return "executive";
-    case VehicleClass::kMultiPurpose: return "multi-purpose vehicle";
-    case VehicleClass::kOffRoader: return "off-roader";
-    case VehicleClass::kCargo: return "cargo";
+    case VehicleClass::kQuadricycle:
+      return "quadricycle";
+    case VehicleClass::kSupermini:
+      return "supermini";
+    case VehicleClass::kSmallFamily:
+      return "small family car";
+    case VehicleClass::kLargeFamily:
+      return "large family car";
+    case VehicleClass::kExecutive:
+      return "executive";
+    case VehicleClass::kMultiPurpose:
+      return "multi-purpose vehicle";
+    case VehicleClass::kOffRoader:
+      return "off-roader";
+    case VehicleClass::kCargo:
+      return "cargo";
   }
   return "unknown";
 }
@@ -39,14 +47,22 @@ struct ClassData {
 
 ClassData DataOf(VehicleClass c) {
   switch (c) {
-    case VehicleClass::kQuadricycle: return {450.0, 400.0};
-    case VehicleClass::kSupermini: return {1100.0, 1500.0};
-    case VehicleClass::kSmallFamily: return {1300.0, 1900.0};
-    case VehicleClass::kLargeFamily: return {1500.0, 2500.0};
-    case VehicleClass::kExecutive: return {1750.0, 3100.0};
-    case VehicleClass::kMultiPurpose: return {1900.0, 3400.0};
-    case VehicleClass::kOffRoader: return {2200.0, 4000.0};
-    case VehicleClass::kCargo: return {3000.0, 4500.0};
+    case VehicleClass::kQuadricycle:
+      return {450.0, 400.0};
+    case VehicleClass::kSupermini:
+      return {1100.0, 1500.0};
+    case VehicleClass::kSmallFamily:
+      return {1300.0, 1900.0};
+    case VehicleClass::kLargeFamily:
+      return {1500.0, 2500.0};
+    case VehicleClass::kExecutive:
+      return {1750.0, 3100.0};
+    case VehicleClass::kMultiPurpose:
+      return {1900.0, 3400.0};
+    case VehicleClass::kOffRoader:
+      return {2200.0, 4000.0};
+    case VehicleClass::kCargo:
+      return {3000.0, 4500.0};
   }
   return {1500.0, 2500.0};
 }

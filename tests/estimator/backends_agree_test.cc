@@ -42,8 +42,9 @@ TEST(BackendsAgree, SeededRandomScenes) {
   int with_collisions = 0, without = 0;
   for (unsigned seed = 1; seed <= 10; ++seed) {
     const int max_objects = seed <= 8 ? 4 : 0;  // seeds 9 and 10: the ego alone
-    const size_t colliding = ExpectSameResult(
-        testing::RandomScene(seed, max_objects, max_objects / 2, seed % 2 == 0), "seed " + std::to_string(seed));
+    const size_t colliding =
+        ExpectSameResult(testing::RandomScene(seed, max_objects, max_objects / 2, seed % 2 == 0),
+                         "seed " + std::to_string(seed));
     (colliding > 0 ? with_collisions : without) += 1;
   }
   // The family must exercise both outcomes, or agreement would prove little.

@@ -119,7 +119,8 @@ TEST(Estimator, SameSceneGivesBitIdenticalResultsTwice) {
     EXPECT_EQ(a.first_collision_pmf, c.first_collision_pmf);
     EXPECT_EQ(a.ego_collision_probability, c.ego_collision_probability);
     ASSERT_EQ(a.objects.size(), c.objects.size());
-    for (size_t o = 0; o < a.objects.size(); ++o) EXPECT_EQ(a.objects[o].contribution, c.objects[o].contribution);
+    for (size_t o = 0; o < a.objects.size(); ++o)
+      EXPECT_EQ(a.objects[o].contribution, c.objects[o].contribution);
   }
 }
 

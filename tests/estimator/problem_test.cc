@@ -18,7 +18,8 @@ TEST(Problem, ProbabilitiesOfEachObjectSumToOne) {
   for (unsigned seed = 11; seed < 19; ++seed) {
     const Scene scene = testing::RandomScene(seed, 5, 3, false);
     const Problem pb = BuildProblem(scene, Params{});
-    EXPECT_NEAR(std::accumulate(pb.ego_probability.begin(), pb.ego_probability.end(), 0.0), 1.0, 1e-12);
+    EXPECT_NEAR(std::accumulate(pb.ego_probability.begin(), pb.ego_probability.end(), 0.0), 1.0,
+                1e-12);
     for (size_t o = 0; o < pb.cos.size(); ++o) {
       double sum = 0.0;
       for (int j = pb.co_offset[o]; j < pb.co_offset[o + 1]; ++j) {
@@ -36,7 +37,8 @@ TEST(Problem, ReferenceHypothesisIsTheMostProbable) {
   const auto best = std::max_element(pb.ego_probability.begin(), pb.ego_probability.end());
   const int i = static_cast<int>(best - pb.ego_probability.begin());
   EXPECT_EQ(pb.ego.profile_target[i / pb.ego.n_paths], 0.0);
-  for (int k = 0; k < pb.ego.n_instants; ++k) EXPECT_EQ(core::SectionOfPath(pb.ego, i % pb.ego.n_paths, k), 3);
+  for (int k = 0; k < pb.ego.n_instants; ++k)
+    EXPECT_EQ(core::SectionOfPath(pb.ego, i % pb.ego.n_paths, k), 3);
 }
 
 TEST(Problem, WeavingEgoPathsArePenalised) {

@@ -40,8 +40,11 @@ TEST(SceneIo, BadFilesNameTheLine) {
   };
   EXPECT_NE(error("hello\n").find("f.scene:1"), std::string::npos);
   EXPECT_NE(error("criticality-scene 1\n").find("no 'ego'"), std::string::npos);
-  EXPECT_NE(error("criticality-scene 1\nego e 0 0 0 x 0 0 0 4 2 -\n").find("f.scene:2: 'x'"), std::string::npos);
-  EXPECT_NE(error("criticality-scene 1\npedestrian p 0 0 0 1 0 0 0 .5 .5\nlane own 0 0 0 1 0 2 0 0 1 1 1 2 1\n").find("f.scene:3"),
+  EXPECT_NE(error("criticality-scene 1\nego e 0 0 0 x 0 0 0 4 2 -\n").find("f.scene:2: 'x'"),
+            std::string::npos);
+  EXPECT_NE(error("criticality-scene 1\npedestrian p 0 0 0 1 0 0 0 .5 .5\nlane own 0 0 0 1 0 2 0 0 "
+                  "1 1 1 2 1\n")
+                .find("f.scene:3"),
             std::string::npos);
   EXPECT_THROW(ReadSceneFile("/nonexistent.scene"), InputError);
 }

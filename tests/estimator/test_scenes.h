@@ -13,7 +13,9 @@ namespace criticality::testing {
  *  pedestrians. Dense when `dense`. */
 inline Scene RandomScene(unsigned seed, int max_vehicles, int max_pedestrians, bool dense) {
   std::mt19937_64 rng(seed);
-  auto uni = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  auto uni = [&](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
   Scene s;
   s.ego.state.speed_mps = uni(0.0, 30.0);
   s.ego.state.accel_mps2 = uni(-3.0, 2.0);

@@ -13,7 +13,8 @@ TEST(VehicleClass, SixClassesWithoutHeight) {
   EXPECT_EQ(ClassifyVehicle(3.9, 1.7, std::nullopt), VehicleClass::kSupermini);
   EXPECT_EQ(ClassifyVehicle(4.3, 1.8, std::nullopt), VehicleClass::kSmallFamily);
   EXPECT_EQ(ClassifyVehicle(4.7, 1.8, std::nullopt), VehicleClass::kLargeFamily);
-  EXPECT_EQ(ClassifyVehicle(5.0, 1.85, std::nullopt), VehicleClass::kExecutive);  // SUMO's default car
+  EXPECT_EQ(ClassifyVehicle(5.0, 1.85, std::nullopt),
+            VehicleClass::kExecutive);  // SUMO's default car
   EXPECT_EQ(ClassifyVehicle(4.8, 1.95, std::nullopt), VehicleClass::kMultiPurpose);
   // Without a height, tall classes are never chosen, whatever the size.
   std::set<VehicleClass> seen;
@@ -34,7 +35,7 @@ TEST(VehicleClass, TwoMoreWithHeight) {
 TEST(VehicleClass, MassAndInertiaGrowWithClassAndStayInPublishedRanges) {
   const VehicleClass order[] = {VehicleClass::kQuadricycle, VehicleClass::kSupermini,
                                 VehicleClass::kSmallFamily, VehicleClass::kLargeFamily,
-                                VehicleClass::kExecutive, VehicleClass::kCargo};
+                                VehicleClass::kExecutive,   VehicleClass::kCargo};
   double last_mass = 0.0;
   for (VehicleClass c : order) {
     const core::VehicleParams p = VehicleParamsFor(c, 4.5, 1.8);

@@ -53,9 +53,8 @@ std::string SumoCfg() {
 
 TEST(DriverOptions, CommandLine) {
   const std::string cfg = SumoCfg();
-  const ParseOutcome o = Parse({"-c", cfg.c_str(), "--ego", "a", "--ego", "b",
-                                "--act", "brake", "--output", "x.sqlite", "--profiles", "5",
-                                "--", "--seed", "7"});
+  const ParseOutcome o = Parse({"-c", cfg.c_str(), "--ego", "a", "--ego", "b", "--act", "brake",
+                                "--output", "x.sqlite", "--profiles", "5", "--", "--seed", "7"});
   EXPECT_EQ(o.options.egos, (std::vector<std::string>{"a", "b"}));
   EXPECT_EQ(o.options.act, Act::kBrake);
   EXPECT_EQ(o.options.params.profiles, 5);
@@ -69,26 +68,32 @@ TEST(DriverOptions, ConfigFileIsRelativeToItsFolderAndCommandLineWins) {
     std::ofstream sumocfg(dir + "/s.sumocfg");
     sumocfg << "<configuration/>\n";
     std::ofstream cfg(dir + "/scenario.cfg");
-    cfg << "sumo-config = s.sumocfg\nego = ego\nact = none\nevent = 1 ego speed 3\nevent = 2 ego speed-mode 0\n";
+    cfg << "sumo-config = s.sumocfg\nego = ego\nact = none\nevent = 1 ego speed 3\nevent = 2 ego "
+           "speed-mode 0\n";
   }
   const std::string cfg = dir + "/scenario.cfg";
   const ParseOutcome o = Parse({"--config", cfg.c_str(), "--act", "warn", "--output", "y.sqlite"});
-  EXPECT_EQ(o.options.sumo_config, (std::filesystem::path(dir) / "s.sumocfg").lexically_normal().string());
+  EXPECT_EQ(o.options.sumo_config,
+            (std::filesystem::path(dir) / "s.sumocfg").lexically_normal().string());
   EXPECT_EQ(o.options.act, Act::kWarn);
   EXPECT_EQ(o.options.events.size(), 2u);
 }
 
 TEST(DriverOptions, BadOptionsAreOneLineErrors) {
-  EXPECT_THROW(Parse({"--ego", "e", "--output", "x.sqlite"}), std::invalid_argument);  // no sumo config
+  EXPECT_THROW(Parse({"--ego", "e", "--output", "x.sqlite"}),
+               std::invalid_argument);  // no sumo config
   EXPECT_THROW(Parse({"--connect", "host", "--ego", "e", "--output", "x"}), std::invalid_argument);
-  EXPECT_THROW(Parse({"--connect", "h:70000", "--ego", "e", "--output", "x"}), std::invalid_argument);
+  EXPECT_THROW(Parse({"--connect", "h:70000", "--ego", "e", "--output", "x"}),
+               std::invalid_argument);
   EXPECT_THROW(Parse({"--connect", "h:1", "--output", "x"}), std::invalid_argument);  // no ego
   EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e"}), std::invalid_argument);     // no output
-  EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--warn-threshold", "1.5"}),
-               std::invalid_argument);
+  EXPECT_THROW(
+      Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--warn-threshold", "1.5"}),
+      std::invalid_argument);
   EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--horizon", "0"}),
                std::invalid_argument);
-  EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--bogus"}), std::invalid_argument);
+  EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--bogus"}),
+               std::invalid_argument);
   EXPECT_NO_THROW(Parse({"--connect", "localhost:8813", "--all-vehicles", "--output", "x"}));
 }
 

@@ -15,7 +15,8 @@ std::string Query(const std::string& path, const std::string& sql) {
   sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
   sqlite3_stmt* s = nullptr;
   std::string out;
-  if (sqlite3_prepare_v2(db, sql.c_str(), -1, &s, nullptr) == SQLITE_OK && sqlite3_step(s) == SQLITE_ROW) {
+  if (sqlite3_prepare_v2(db, sql.c_str(), -1, &s, nullptr) == SQLITE_OK &&
+      sqlite3_step(s) == SQLITE_ROW) {
     const unsigned char* t = sqlite3_column_text(s, 0);
     out = t ? reinterpret_cast<const char*>(t) : "NULL";
   }
@@ -39,7 +40,8 @@ TEST(ResultsDb, AnticipationIsCollisionTimeMinusTheWarningStart) {
     const long long w = db.OpenWarning("ego", 1.5, 0.6);
     db.UpdateWarningPeak(w, 0.9);
     db.AddCollision(CollisionRow{3.0, "ego", "lead", "car", "car", "collision", "WE_1", 20, 5, 99});
-    db.AddCollision(CollisionRow{4.0, "other", "third", "car", "car", "collision", "WE_0", 9, 8, 12});
+    db.AddCollision(
+        CollisionRow{4.0, "other", "third", "car", "car", "collision", "WE_0", 9, 8, 12});
     db.CloseWarning(w, 3.2);
     db.EndRun("completed");
   }

@@ -13,8 +13,8 @@ enum class ObjectKind { kEgo, kVehicle, kPedestrian };
 struct ObjectResult {
   std::string id;
   ObjectKind kind{ObjectKind::kVehicle};
-  int first_trajectory{0};      ///< index of its first trajectory among all CO trajectories
-  int trajectories{0};          ///< its number of hypotheses
+  int first_trajectory{0};  ///< index of its first trajectory among all CO trajectories
+  int trajectories{0};      ///< its number of hypotheses
   /** Ego lane its centre of gravity lies in (vehicles driving along the ego's lanes):
    *  -1 right, 0 the ego's, +1 left; 2 = none (outside, crossing, or a pedestrian). */
   int lane{2};
@@ -25,25 +25,25 @@ struct ObjectResult {
 
 /** A collision-free ego hypothesis (paper Sec. V-A, "escape routes"). */
 struct EscapeRoute {
-  int ego_trajectory{0};          ///< index = profile * paths + path
-  int profile{0};                 ///< index into the ego's profiles
-  double profile_slip{0.0};       ///< the profile's target longitudinal slip
-  double profile_accel_mps2{0.0}; ///< the steady deceleration/acceleration that slip gives
-  std::vector<int> sections;      ///< lateral sample index per sample instant (right to left)
-  double probability{0.0};        ///< occurrence probability p_EGO,i
+  int ego_trajectory{0};           ///< index = profile * paths + path
+  int profile{0};                  ///< index into the ego's profiles
+  double profile_slip{0.0};        ///< the profile's target longitudinal slip
+  double profile_accel_mps2{0.0};  ///< the steady deceleration/acceleration that slip gives
+  std::vector<int> sections;       ///< lateral sample index per sample instant (right to left)
+  double probability{0.0};         ///< occurrence probability p_EGO,i
 };
 
 /** Work sizes, so that figures compare with the paper's (DESIGN.md "Counting"). */
 struct WorkCounts {
   int time_steps{0};
-  int ego_trajectories{0};        ///< h_acc * h_EGO,str
-  int co_trajectories{0};         ///< sum over COs of their hypotheses
+  int ego_trajectories{0};             ///< h_acc * h_EGO,str
+  int co_trajectories{0};              ///< sum over COs of their hypotheses
   std::uint64_t pose_combinations{0};  ///< co_trajectories * ego_trajectories * time_steps
 };
 
 /** Wall time of each module, milliseconds. */
 struct ModuleTimes {
-  double street_ms{0.0};       ///< street data processing + hypothesis set-up + scoring
+  double street_ms{0.0};  ///< street data processing + hypothesis set-up + scoring
   double trajectory_ms{0.0};
   double collision_ms{0.0};
   double risk_ms{0.0};

@@ -39,8 +39,8 @@ struct Lane {
 };
 
 /** Up to three lanes around an observer (paper Sec. IV-A): its own, the immediate left and the
- *  immediate right. A missing own lane is replaced by a virtual lane (Params::virtual_lane_width_m);
- *  missing neighbours are simply not used. */
+ *  immediate right. A missing own lane is replaced by a virtual lane
+ * (Params::virtual_lane_width_m); missing neighbours are simply not used. */
 struct LaneSet {
   std::optional<Lane> own;
   std::optional<Lane> left;
@@ -49,13 +49,13 @@ struct LaneSet {
 
 /** Kinematic state of an object in the scene frame W. */
 struct ObjectState {
-  double x_m{0.0};                ///< centre of gravity
+  double x_m{0.0};  ///< centre of gravity
   double y_m{0.0};
-  double yaw_rad{0.0};            ///< heading, counter-clockwise from +x
-  double speed_mps{0.0};          ///< speed over ground, >= 0
-  double accel_mps2{0.0};         ///< current longitudinal acceleration
-  double yaw_rate_radps{0.0};     ///< current yaw rate
-  double sideslip_rad{0.0};       ///< current sideslip angle beta (0 when unknown)
+  double yaw_rad{0.0};         ///< heading, counter-clockwise from +x
+  double speed_mps{0.0};       ///< speed over ground, >= 0
+  double accel_mps2{0.0};      ///< current longitudinal acceleration
+  double yaw_rate_radps{0.0};  ///< current yaw rate
+  double sideslip_rad{0.0};    ///< current sideslip angle beta (0 when unknown)
 };
 
 /** The vehicle whose criticality is estimated. Simulated with the two-track model. */

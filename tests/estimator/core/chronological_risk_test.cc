@@ -18,7 +18,8 @@ TEST(ChronologicalRisk, HandComputedTwoObjectExample) {
   const int object_of[4] = {0, 0, 1, 1};
   const int events[2] = {3, 0};
   double mass[2] = {0.0, 0.0}, contribution[2];
-  const double total = ChronologicalCollisionProbability(2, events, p, object_of, 2, mass, contribution);
+  const double total =
+      ChronologicalCollisionProbability(2, events, p, object_of, 2, mass, contribution);
   // First collision keeps its probability: P(B) = 0.6.
   EXPECT_DOUBLE_EQ(contribution[0], 0.6);
   // The next is scaled by the no-collision probability before it: P(A and not B) ~ P(not B) P(A)
@@ -80,9 +81,9 @@ TEST(ChronologicalRisk, TotalIsOneMinusProductOfMissesOnRandomInstances) {
     }
     std::shuffle(events.begin(), events.end(), rng);  // any chronological order
     std::vector<double> mass(n_obj, 0.0), c(events.size());
-    const double total = ChronologicalCollisionProbability(static_cast<int>(events.size()), events.data(),
-                                                           p.data(), object_of.data(), n_obj,
-                                                           mass.data(), c.data());
+    const double total =
+        ChronologicalCollisionProbability(static_cast<int>(events.size()), events.data(), p.data(),
+                                          object_of.data(), n_obj, mass.data(), c.data());
     double miss = 1.0;
     for (double qo : q) miss *= 1.0 - qo;
     EXPECT_NEAR(total, 1.0 - miss, 1e-12);

@@ -1,9 +1,9 @@
 // Street data processing: the Gauss-Jordan lane-divider fit (paper Sec. IV-A).
 #include "core/lane_fit.h"
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <random>
 
 #include "criticality/errors.h"
@@ -96,7 +96,8 @@ TEST(LaneFit, HostFitNamesTheFieldOfADegenerateDivider) {
     internal::FitLanes(lanes, "scene.ego.lanes");
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("scene.ego.lanes.left.left"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("scene.ego.lanes.left.left"), std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find("distinct x"), std::string::npos) << e.what();
   }
 }

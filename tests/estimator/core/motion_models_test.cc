@@ -29,8 +29,8 @@ TEST(OneTrack, SteadyStateYawRateMatchesLinearSingleTrackFormula) {
   const VehicleParams p = Car();
   const double wheelbase = p.lf_m + p.lr_m;
   // Self-steering gradient of the linear single-track model (Schramm et al. 2014).
-  const double eg = p.mass_kg * (p.cr_npr * p.lr_m - p.cf_npr * p.lf_m) /
-                    (p.cf_npr * p.cr_npr * wheelbase);
+  const double eg =
+      p.mass_kg * (p.cr_npr * p.lr_m - p.cf_npr * p.lf_m) / (p.cf_npr * p.cr_npr * wheelbase);
   ASSERT_GT(eg, 0.0) << "understeering car expected";
   for (double v : {5.0, 15.0, 30.0}) {
     for (double steer : {0.01, 0.03}) {
@@ -73,7 +73,8 @@ TEST(OneTrack, LowSpeedSeamIsContinuousAndStopsCleanly) {
   ASSERT_TRUE(crossed);
   // The yaw rate at the seam changes no more than 2% of its value there (kinematic and
   // dynamic steady states nearly agree at low speed), and it ends at rest.
-  EXPECT_LT(jump_at_seam, 0.02 * std::fabs(prev_rate) + 0.02 * seam * std::tan(steer) / (p.lf_m + p.lr_m));
+  EXPECT_LT(jump_at_seam,
+            0.02 * std::fabs(prev_rate) + 0.02 * seam * std::tan(steer) / (p.lf_m + p.lr_m));
   EXPECT_EQ(s.v, 0.0);
   EXPECT_EQ(s.yaw_rate, 0.0);
 }
@@ -124,7 +125,8 @@ TEST(TwoTrack, SlipGivesTheTyreCurveDeceleration) {
     EXPECT_NEAR(d.yaw_acc, 0.0, 1e-9);
   }
   EXPECT_NEAR(AccelFromSlip(p, -0.1), -p.friction * kGravity, 1e-9);  // the peak
-  for (double a : {-9.0, -3.0, 0.0, 4.0}) EXPECT_NEAR(AccelFromSlip(p, SlipFromAccel(p, a)), a, 1e-9);
+  for (double a : {-9.0, -3.0, 0.0, 4.0})
+    EXPECT_NEAR(AccelFromSlip(p, SlipFromAccel(p, a)), a, 1e-9);
 }
 
 TEST(TwoTrack, FrictionCircleLimitsCombinedForce) {
@@ -141,7 +143,8 @@ TEST(TwoTrack, FrictionCircleLimitsCombinedForce) {
 namespace criticality::core {
 namespace {
 TEST(TwoTrack, MagicFormulaStiffnessPeaksAtThePeakSlip) {
-  EXPECT_NEAR(kMagicFormulaB, std::tan(kPi / (2.0 * kMagicFormulaShapeC)) / kMagicFormulaPeakSlip, 1e-12);
+  EXPECT_NEAR(kMagicFormulaB, std::tan(kPi / (2.0 * kMagicFormulaShapeC)) / kMagicFormulaPeakSlip,
+              1e-12);
   EXPECT_NEAR(LongitudinalForceFactor(kMagicFormulaPeakSlip), 1.0, 1e-12);
   EXPECT_LT(LongitudinalForceFactor(0.9 * kMagicFormulaPeakSlip), 1.0);
 }

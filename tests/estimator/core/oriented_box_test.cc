@@ -2,13 +2,13 @@
 // an independent method (edge intersection + point in polygon) on seeded random pairs.
 #include "core/oriented_box.h"
 
-#include "core/geometry.h"
-
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <random>
+
+#include "core/geometry.h"
 
 namespace criticality::core {
 namespace {
@@ -82,11 +82,11 @@ TEST(OrientedBox, CrossingRectanglesWithNoCornerInsideOverlap) {
 
 TEST(OrientedBox, SimpleCases) {
   const auto a = MakeBox(0.0, 0.0, 0.0, 2.25, 0.9);
-  EXPECT_TRUE(BoxesOverlap(a, MakeBox(4.0, 0.0, 0.0, 2.25, 0.9)));    // bumpers overlap
-  EXPECT_FALSE(BoxesOverlap(a, MakeBox(4.6, 0.0, 0.0, 2.25, 0.9)));   // 10 cm gap
-  EXPECT_FALSE(BoxesOverlap(a, MakeBox(0.0, 1.9, 0.0, 2.25, 0.9)));   // side by side
-  EXPECT_TRUE(BoxesOverlap(a, MakeBox(0.0, 0.0, 1.0, 0.1, 0.1)));     // contained
-  EXPECT_TRUE(BoxesOverlap(MakeBox(0.0, 0.0, 1.0, 0.1, 0.1), a));     // symmetric
+  EXPECT_TRUE(BoxesOverlap(a, MakeBox(4.0, 0.0, 0.0, 2.25, 0.9)));   // bumpers overlap
+  EXPECT_FALSE(BoxesOverlap(a, MakeBox(4.6, 0.0, 0.0, 2.25, 0.9)));  // 10 cm gap
+  EXPECT_FALSE(BoxesOverlap(a, MakeBox(0.0, 1.9, 0.0, 2.25, 0.9)));  // side by side
+  EXPECT_TRUE(BoxesOverlap(a, MakeBox(0.0, 0.0, 1.0, 0.1, 0.1)));    // contained
+  EXPECT_TRUE(BoxesOverlap(MakeBox(0.0, 0.0, 1.0, 0.1, 0.1), a));    // symmetric
   // Diagonal corner-to-corner gap that only a rotated axis separates.
   const auto r = MakeBox(0.0, 0.0, kPi / 4, 1.0, 1.0);
   EXPECT_FALSE(BoxesOverlap(r, MakeBox(2.0, 0.0, kPi / 4, 0.3, 0.3)));

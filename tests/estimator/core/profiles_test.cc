@@ -8,7 +8,8 @@ namespace {
 
 TEST(Profiles, SixVehicleProfilesAreMaxMinZeroAndNegativeSpread) {
   const double expected[6] = {-9.7, -7.275, -4.85, -2.425, 0.0, 9.7};
-  for (int k = 0; k < 6; ++k) EXPECT_NEAR(VehicleProfileTarget(k, 6, -9.7, 9.7), expected[k], 1e-12);
+  for (int k = 0; k < 6; ++k)
+    EXPECT_NEAR(VehicleProfileTarget(k, 6, -9.7, 9.7), expected[k], 1e-12);
 }
 
 TEST(Profiles, FiveAndThreeProfiles) {

@@ -17,10 +17,10 @@ namespace criticality {
 namespace {
 
 // A macro: GTEST_SKIP must run in the test body to end it.
-#define SKIP_WITHOUT_DEVICE()                                   \
-  do {                                                          \
-    std::string why;                                            \
-    if (!cuda::DeviceAvailable(&why)) GTEST_SKIP() << why;      \
+#define SKIP_WITHOUT_DEVICE()                              \
+  do {                                                     \
+    std::string why;                                       \
+    if (!cuda::DeviceAvailable(&why)) GTEST_SKIP() << why; \
   } while (0)
 
 TEST(CoreOnDevice, BoxOverlapMatchesHost) {
@@ -47,7 +47,8 @@ TEST(CoreOnDevice, TrajectoriesMatchHostWithinMicrometres) {
     std::vector<double> hx(pb.sim.n_steps), hy(pb.sim.n_steps), hyaw(pb.sim.n_steps);
     double worst = 0.0;
     for (int t = 0; t < h->Trajectories(); ++t) {
-      core::SimulateHypothesis(*h, pb.sim, t / h->n_paths, t % h->n_paths, hx.data(), hy.data(), hyaw.data());
+      core::SimulateHypothesis(*h, pb.sim, t / h->n_paths, t % h->n_paths, hx.data(), hy.data(),
+                               hyaw.data());
       for (int n = 0; n < pb.sim.n_steps; ++n) {
         const size_t k = static_cast<size_t>(t) * pb.sim.n_steps + n;
         worst = std::fmax(worst, std::hypot(x[k] - hx[n], y[k] - hy[n]));

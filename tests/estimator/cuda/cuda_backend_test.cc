@@ -5,18 +5,18 @@
 #include <cmath>
 #include <string>
 
+#include "../test_scenes.h"
 #include "bench/paper_scenes.h"
 #include "criticality/errors.h"
 #include "criticality/estimator.h"
-#include "../test_scenes.h"
 
 namespace criticality {
 namespace {
 
-#define SKIP_WITHOUT_DEVICE()                              \
-  do {                                                     \
-    std::string why;                                       \
-    if (!CudaUsable(&why)) GTEST_SKIP() << why;            \
+#define SKIP_WITHOUT_DEVICE()                   \
+  do {                                          \
+    std::string why;                            \
+    if (!CudaUsable(&why)) GTEST_SKIP() << why; \
   } while (0)
 
 // Differing pairs are allowed only where the two boxes come within 1 mm of touching: check
@@ -56,7 +56,8 @@ TEST(CudaBackend, PaperScenes) {
 TEST(CudaBackend, SeededRandomScenes) {
   SKIP_WITHOUT_DEVICE();
   for (unsigned seed = 1; seed <= 10; ++seed) {
-    ExpectAgreement(testing::RandomScene(seed, seed <= 8 ? 4 : 0, 2, seed % 2 == 0), "seed " + std::to_string(seed));
+    ExpectAgreement(testing::RandomScene(seed, seed <= 8 ? 4 : 0, 2, seed % 2 == 0),
+                    "seed " + std::to_string(seed));
   }
 }
 
@@ -67,7 +68,7 @@ TEST(CudaBackend, BuffersAreReusedAcrossSizes) {
   Estimator gpu(Params{}, opt);
   const double s2 = gpu.Estimate(bench::PaperSceneS2()).p_collision;
   const double s1 = gpu.Estimate(bench::PaperSceneS1()).p_collision;  // smaller after larger
-  EXPECT_EQ(gpu.Estimate(bench::PaperSceneS2()).p_collision, s2);    // deterministic on the device
+  EXPECT_EQ(gpu.Estimate(bench::PaperSceneS2()).p_collision, s2);     // deterministic on the device
   Estimator cpu(Params{});
   EXPECT_NEAR(cpu.Estimate(bench::PaperSceneS1()).p_collision, s1, 1e-4);
 }
