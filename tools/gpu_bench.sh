@@ -58,6 +58,10 @@ for scene in S1 S2; do
     "$bench" --backend cuda --scene "$scene" --profiles "$profiles" --repeat "$repeat" --warmup 3 --json | tail -n 1 || status=1
   done
 done
+echo "== a fleet of S1-size egos in one call (target: >= 10,000 egos/s on one H100)"
+for n in 1000 10000; do
+  "$bench" --backend cuda --scene S1 --batch "$n" --repeat 5 --warmup 1 --json | tail -n 1 || status=1
+done
 echo "== scaling with the number of other vehicles (cpu and cuda)"
 for n in 1 3 10 30 100; do
   for backend in cpu cuda; do

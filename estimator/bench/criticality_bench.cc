@@ -2,6 +2,7 @@
 // (median and minimum over --repeat runs, after --warmup runs). No SUMO dependency: it must run
 // on a bare GPU machine. With --json the last line of standard output is one JSON object.
 #include <algorithm>
+#include <chrono>
 #include <boost/program_options.hpp>
 #include <cstdio>
 #include <exception>
@@ -32,6 +33,7 @@ struct Options {
   bool report{false};
   bool compare{false};
   int cos{-1};
+  int batch{0};
 };
 
 struct Timing {
@@ -147,6 +149,40 @@ void PrintReport(const Scene& scene, const Params& params, const Result& r) {
       "  (lateral samples count from the right: 0-1 right lane, 2-4 ego lane, 5-6 left lane)\n");
 }
 
+// A fleet of egos in one call: copies of the scene with the ego's speed spread over +-20 %.
+int Batch(const Scene& scene, const Params& params, const Options& opt) {
+  std::vector<Scene> scenes(opt.batch, scene);
+  for (int k = 0; k < opt.batch; ++k) {
+    scenes[k].ego.state.speed_mps *= 0.8 + 0.4 * (k % 101) / 100.0;
+  }
+  EstimatorOptions eopt;
+  eopt.backend = ParseBackend(opt.backend);
+  eopt.threads = opt.threads;
+  Estimator estimator(params, eopt);
+  for (int k = 0; k < opt.warmup; ++k) estimator.EstimateBatch(scenes);
+  std::vector<double> ms;
+  double p_sum = 0.0;
+  for (int k = 0; k < opt.repeat; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<Result> results = estimator.EstimateBatch(scenes);
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    p_sum = 0.0;
+    for (const Result& r : results) p_sum += r.p_collision;
+  }
+  const double median = Median(ms);
+  std::printf("batch of %d %s-size egos, backend %s (%d threads): median %.3f ms per batch, "
+              "%.1f egos/s, mean p_collision %.6f\n",
+              opt.batch, opt.scene.c_str(), BackendName(estimator.options().backend).c_str(),
+              estimator.threads(), median, opt.batch / (median * 1e-3), p_sum / opt.batch);
+  if (opt.json) {
+    std::printf("{\"scene\":\"%s\",\"backend\":\"%s\",\"batch\":%d,\"median_ms\":%.6f,"
+                "\"egos_per_s\":%.3f,\"mean_p_collision\":%.17g}\n",
+                JsonEscape(opt.scene).c_str(), BackendName(estimator.options().backend).c_str(),
+                opt.batch, median, opt.batch / (median * 1e-3), p_sum / opt.batch);
+  }
+  return 0;
+}
+
 // Every backend on the same scene, one after the other in this process.
 int Compare(const Scene& scene, const Params& params, const Options& opt) {
   std::vector<Backend> backends{Backend::kReference, Backend::kCpu};
@@ -230,6 +266,9 @@ int main(int argc, char** argv) {
       "print a table: times, pose combinations per second, ratio to the reference, agreement")(
       "cos", po::value(&opt.cos),
       "instead of --scene: the scaling scene with this many other vehicles (e.g. 1 3 10 30 100)")(
+      "batch", po::value(&opt.batch),
+      "estimate a batch of this many scenes in one call (Estimator::EstimateBatch): copies of the "
+      "scene with the ego's speed varied, as a fleet of egos; reports egos per second")(
       "report", po::bool_switch(&opt.report),
       "print a readable summary of the result (per-object shares, collision times, escape routes)");
   try {
@@ -264,6 +303,8 @@ int main(int argc, char** argv) {
       scene = bench::PaperScene(opt.scene);
     }
     if (opt.compare) return Compare(scene, params, opt);
+    if (opt.batch < 0 || opt.batch > 1000000) throw InputError("--batch = " + std::to_string(opt.batch) + ": use 1 to 1000000");
+    if (opt.batch > 0) return Batch(scene, params, opt);
     Estimator estimator(params, eopt);
 
     for (int k = 0; k < opt.warmup; ++k) estimator.Estimate(scene);

@@ -1,5 +1,5 @@
 // The CUDA backend: trajectory generation, collision recognition and risk assessment on the
-// device, from the same core/ functions as the CPU (one thread per hypothesis, per ego x CO
+// device, for one scene or a whole batch of scenes in one set of launches (batch_layout.h), from the same core/ functions as the CPU (one thread per hypothesis, per ego x CO
 // pair, per ego hypothesis; the per-thread bodies are in kernel_bodies.h, tested on the CPU),
 // with no host round trip between modules. Street data processing
 // and hypothesis scoring (tiny) stay on the host (BuildProblem). Buffers are plain cudaMalloc,
@@ -19,6 +19,7 @@
 #include "core/trajectory_generation.h"
 #include "cuda/cuda_backend.h"
 #include "cuda/device.cuh"
+#include "cuda/batch_layout.h"
 #include "cuda/kernel_bodies.h"
 #include "src/risk_assessment.h"
 
@@ -67,12 +68,11 @@ class DeviceArray {
   size_t capacity_{0};
 };
 
-__global__ void TrajectoryKernel(const core::HypothesisSet* sets, const int* co_object_of,
-                                 const int* co_offset, int n_ego, int n_co,
+__global__ void TrajectoryKernel(const core::HypothesisSet* sets, BatchLayout b,
                                  core::SimulationConfig cfg, double* ex, double* ey, double* eyaw,
                                  double* cx, double* cy, double* cyaw) {
   const int g = blockIdx.x * blockDim.x + threadIdx.x;
-  TrajectoryBody(g, sets, co_object_of, co_offset, n_ego, n_co, cfg, ex, ey, eyaw, cx, cy, cyaw);
+  TrajectoryBody(g, sets, b, cfg, ex, ey, eyaw, cx, cy, cyaw);
 }
 
 __global__ void TrigKernel(const double* yaw, size_t n, double* c, double* s) {
@@ -80,30 +80,23 @@ __global__ void TrigKernel(const double* yaw, size_t n, double* c, double* s) {
   if (k < n) TrigBody(k, yaw, c, s);
 }
 
-__global__ void CollisionKernel(int n_ego, int n_co, int steps, Poses ego, Poses co, double ego_hl,
-                                double ego_hw, const double* co_hl, const double* co_hw,
+__global__ void CollisionKernel(BatchLayout b, long long pairs, Poses ego, Poses co,
                                 std::int16_t* first) {
-  const size_t k = blockIdx.x * static_cast<size_t>(blockDim.x) + threadIdx.x;
-  if (k < static_cast<size_t>(n_ego) * n_co) {
-    CollisionBody(k, n_ego, n_co, steps, ego, co, ego_hl, ego_hw, co_hl, co_hw, first);
-  }
+  const long long k = blockIdx.x * static_cast<long long>(blockDim.x) + threadIdx.x;
+  if (k < pairs) CollisionBody(k, b, ego, co, first);
 }
 
-__global__ void RiskKernel(int n_ego, int n_co, int steps, int n_obj, const std::int16_t* first,
-                           const double* p_co, const int* object_of, RiskScratch w, double* ego_col,
-                           char* ego_hit, double* by_step, double* by_object) {
-  const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n_ego)
-    RiskBody(i, n_co, steps, n_obj, first, p_co, object_of, w, ego_col, ego_hit, by_step,
-             by_object);
+__global__ void RiskKernel(BatchLayout b, const std::int16_t* first, const double* p_co,
+                           RiskScratch w, double* ego_col, char* ego_hit, double* by_step,
+                           double* by_object) {
+  const int g = blockIdx.x * blockDim.x + threadIdx.x;
+  if (g < b.total_ego) RiskBody(g, b, first, p_co, w, ego_col, ego_hit, by_step, by_object);
 }
 
-__global__ void ReduceKernel(int n_ego, int steps, int n_obj, const double* p_ego,
-                             const double* ego_col, const double* by_step, const double* by_object,
-                             double* out) {
+__global__ void ReduceKernel(BatchLayout b, int outputs, const double* p_ego, const double* ego_col,
+                             const double* by_step, const double* by_object, double* out) {
   const int q = blockIdx.x * blockDim.x + threadIdx.x;
-  if (q <= steps + n_obj)
-    ReduceBody(q, n_ego, steps, n_obj, p_ego, ego_col, by_step, by_object, out);
+  if (q < outputs) ReduceBody(q, b, p_ego, ego_col, by_step, by_object, out);
 }
 
 double MsSince(std::chrono::steady_clock::time_point t0) {
@@ -115,66 +108,86 @@ class CudaBackend final : public EstimatorBackend {
   CudaBackend() { Check(cudaSetDevice(0), "cudaSetDevice"); }
 
   void GenerateTrajectories(const internal::Problem& pb) override {
-    Upload(pb);
-    LaunchTrajectories(pb);
+    Upload({&pb});
+    LaunchTrajectories();
     Check(cudaDeviceSynchronize(), "after trajectory kernels");
-    host_stale_ = true;
   }
 
   void RecognizeCollisions(const internal::Problem& pb, std::vector<std::int16_t>* first) override {
-    LaunchCollisions(pb);
+    LaunchCollisions();
     d_first_.Download(first, static_cast<size_t>(pb.EgoTrajectories()) * pb.CoTrajectories(),
                       "after collision kernel (copy pair matrix)");
   }
 
   void Run(const internal::Problem& pb, const Params& params, bool keep_pair_matrix,
            Result* result) override {
+    std::vector<Result> results(1);
+    RunBatch({&pb}, params, keep_pair_matrix, &results);
+    *result = std::move(results.front());
+  }
+
+  void RunBatch(const std::vector<const internal::Problem*>& problems, const Params& params,
+                bool keep_pair_matrix, std::vector<Result>* results) override {
+    if (problems.empty()) return;
     auto t = std::chrono::steady_clock::now();
-    GenerateTrajectories(pb);
-    result->times.trajectory_ms = MsSince(t);
+    Upload(problems);
+    LaunchTrajectories();
+    Check(cudaDeviceSynchronize(), "after trajectory kernels");
+    const double trajectory_ms = MsSince(t);
     t = std::chrono::steady_clock::now();
-    LaunchCollisions(pb);
+    LaunchCollisions();
     Check(cudaDeviceSynchronize(), "after collision kernel");
-    result->times.collision_ms = MsSince(t);
+    const double collision_ms = MsSince(t);
     t = std::chrono::steady_clock::now();
-    const int n_ego = pb.EgoTrajectories(), n_co = pb.CoTrajectories(), steps = pb.Steps();
-    const int n_obj = static_cast<int>(pb.cos.size());
-    RiskScratch w{
-        d_hist_.Reserve(static_cast<size_t>(n_ego) * (steps + 1), "cudaMalloc histogram"),
-        d_events_.Reserve(static_cast<size_t>(n_ego) * n_co, "cudaMalloc events"),
-        d_contrib_.Reserve(static_cast<size_t>(n_ego) * n_co, "cudaMalloc contributions"),
-        d_mass_.Reserve(static_cast<size_t>(n_ego) * std::max(n_obj, 1), "cudaMalloc hit mass")};
-    double* ego_col = d_ego_col_.Reserve(n_ego, "cudaMalloc ego collision probability");
-    char* ego_hit = d_ego_hit_.Reserve(n_ego, "cudaMalloc ego hit");
-    double* by_step = d_by_step_.Reserve(static_cast<size_t>(n_ego) * steps, "cudaMalloc by step");
-    double* by_obj =
-        d_by_obj_.Reserve(static_cast<size_t>(n_ego) * std::max(n_obj, 1), "cudaMalloc by object");
-    double* out = d_out_.Reserve(steps + n_obj + 1, "cudaMalloc risk output");
-    RiskKernel<<<Blocks(n_ego), kThreads>>>(n_ego, n_co, steps, n_obj, d_first_.get(),
-                                            d_p_co_.get(), d_object_of_.get(), w, ego_col, ego_hit,
-                                            by_step, by_obj);
+    const BatchHost& h = host_;
+    const size_t total_ego = h.TotalEgo(), pairs = h.TotalPairs();
+    const size_t ego_obj = std::max<long long>(h.TotalEgoObj(), 1);
+    RiskScratch w{d_hist_.Reserve(total_ego * (h.steps + 1), "cudaMalloc histogram"),
+                  d_events_.Reserve(pairs, "cudaMalloc events"),
+                  d_contrib_.Reserve(pairs, "cudaMalloc contributions"),
+                  d_mass_.Reserve(ego_obj, "cudaMalloc hit mass")};
+    double* ego_col = d_ego_col_.Reserve(total_ego, "cudaMalloc ego collision probability");
+    char* ego_hit = d_ego_hit_.Reserve(total_ego, "cudaMalloc ego hit");
+    double* by_step = d_by_step_.Reserve(total_ego * h.steps, "cudaMalloc by step");
+    double* by_obj = d_by_obj_.Reserve(ego_obj, "cudaMalloc by object");
+    double* out = d_out_.Reserve(h.TotalOut(), "cudaMalloc risk output");
+    RiskKernel<<<Blocks(total_ego), kThreads>>>(layout_, d_first_.get(), d_p_co_.get(), w, ego_col,
+                                                 ego_hit, by_step, by_obj);
     Check(cudaGetLastError(), "after risk kernel launch");
-    ReduceKernel<<<Blocks(steps + n_obj + 1), kThreads>>>(n_ego, steps, n_obj, d_p_ego_.get(),
-                                                          ego_col, by_step, by_obj, out);
+    ReduceKernel<<<Blocks(h.TotalOut()), kThreads>>>(layout_, h.TotalOut(), d_p_ego_.get(), ego_col,
+                                                      by_step, by_obj, out);
     Check(cudaGetLastError(), "after reduction kernel launch");
-    std::vector<double> sums;
-    d_out_.Download(&sums, steps + n_obj + 1, "after risk kernels (copy sums)");
-    std::vector<double> col;
-    d_ego_col_.Download(&col, n_ego, "copy ego collision probabilities");
+    std::vector<double> sums, col;
     std::vector<char> hit;
-    d_ego_hit_.Download(&hit, n_ego, "copy ego hits");
-    result->first_collision_pmf.assign(sums.begin(), sums.begin() + steps);
-    result->objects = pb.objects;
-    for (int o = 0; o < n_obj; ++o) result->objects[o].contribution = sums[steps + o];
-    result->p_collision = sums[steps + n_obj];
-    result->ego_probability = pb.ego_probability;
-    result->ego_collision_probability = std::move(col);
-    internal::FillEscapeRoutes(pb, params, hit, result);
-    if (keep_pair_matrix) {
-      d_first_.Download(&result->first_collision_step, static_cast<size_t>(n_ego) * n_co,
-                        "copy pair matrix");
+    std::vector<std::int16_t> first;
+    d_out_.Download(&sums, h.TotalOut(), "after risk kernels (copy sums)");
+    d_ego_col_.Download(&col, total_ego, "copy ego collision probabilities");
+    d_ego_hit_.Download(&hit, total_ego, "copy ego hits");
+    if (keep_pair_matrix) d_first_.Download(&first, pairs, "copy pair matrices");
+    for (size_t p = 0; p < problems.size(); ++p) {
+      const internal::Problem& pb = *problems[p];
+      Result& r = (*results)[p];
+      const int steps = h.steps, n_obj = static_cast<int>(pb.cos.size());
+      const double* s = sums.data() + h.out_base[p];
+      r.first_collision_pmf.assign(s, s + steps);
+      r.objects = pb.objects;
+      for (int o = 0; o < n_obj; ++o) r.objects[o].contribution = s[steps + o];
+      r.p_collision = s[steps + n_obj];
+      r.ego_probability = pb.ego_probability;
+      r.ego_collision_probability.assign(col.begin() + h.ego_base[p], col.begin() + h.ego_base[p + 1]);
+      internal::FillEscapeRoutes(
+          pb, params, std::vector<char>(hit.begin() + h.ego_base[p], hit.begin() + h.ego_base[p + 1]), &r);
+      if (keep_pair_matrix) {
+        r.first_collision_step.assign(first.begin() + h.pair_base[p], first.begin() + h.pair_base[p + 1]);
+      }
     }
-    result->times.risk_ms = MsSince(t);
+    const double risk_ms = MsSince(t);
+    const double n = static_cast<double>(problems.size());
+    for (Result& r : *results) {  // a batch shares its time: each result gets the mean
+      r.times.trajectory_ms = trajectory_ms / n;
+      r.times.collision_ms = collision_ms / n;
+      r.times.risk_ms = risk_ms / n;
+    }
   }
 
   int Threads() const override { return 1; }
@@ -188,87 +201,102 @@ class CudaBackend final : public EstimatorBackend {
   }
 
  private:
-  void Upload(const internal::Problem& pb) {
-    std::vector<core::HypothesisSet> sets{pb.ego};
-    sets.insert(sets.end(), pb.cos.begin(), pb.cos.end());
-    d_sets_.Upload(sets, "copy hypothesis sets");
-    d_object_of_.Upload(pb.co_object_of, "copy CO object index");
-    d_offset_.Upload(pb.co_offset, "copy CO offsets");
-    d_p_co_.Upload(pb.co_probability, "copy CO probabilities");
-    d_p_ego_.Upload(pb.ego_probability, "copy ego probabilities");
-    std::vector<double> hl(pb.CoTrajectories()), hw(pb.CoTrajectories());
-    for (int j = 0; j < pb.CoTrajectories(); ++j) {
-      hl[j] = pb.cos[pb.co_object_of[j]].half_length;
-      hw[j] = pb.cos[pb.co_object_of[j]].half_width;
-    }
-    d_co_hl_.Upload(hl, "copy CO half lengths");
-    d_co_hw_.Upload(hw, "copy CO half widths");
-    pb_ = &pb;
+  void Upload(const std::vector<const internal::Problem*>& problems) {
+    host_ = MakeBatch(problems);
+    const BatchHost& h = host_;
+    d_sets_.Upload(h.sets, "copy hypothesis sets");
+    layout_ = BatchLayout{h.problems,
+                          h.steps,
+                          h.TotalEgo(),
+                          h.TotalCo(),
+                          d_set_base_.Upload(h.set_base, "copy batch set offsets"),
+                          d_ego_base_.Upload(h.ego_base, "copy batch ego offsets"),
+                          d_co_base_.Upload(h.co_base, "copy batch CO offsets"),
+                          d_pair_base_.Upload(h.pair_base, "copy batch pair offsets"),
+                          d_obj_base_.Upload(h.obj_base, "copy batch object offsets"),
+                          d_ego_obj_base_.Upload(h.ego_obj_base, "copy batch ego x object offsets"),
+                          d_out_base_.Upload(h.out_base, "copy batch output offsets"),
+                          d_object_of_.Upload(h.co_object_of, "copy CO object index"),
+                          d_co_offset_.Upload(h.co_offset, "copy CO offsets"),
+                          d_co_hl_.Upload(h.co_half_length, "copy CO half lengths"),
+                          d_co_hw_.Upload(h.co_half_width, "copy CO half widths"),
+                          d_ego_hl_.Upload(h.ego_half_length, "copy ego half lengths"),
+                          d_ego_hw_.Upload(h.ego_half_width, "copy ego half widths")};
+    d_p_co_.Upload(h.p_co, "copy CO probabilities");
+    d_p_ego_.Upload(h.p_ego, "copy ego probabilities");
+    sim_ = problems.front()->sim;
+    host_stale_ = true;
   }
 
-  void LaunchTrajectories(const internal::Problem& pb) {
-    const int n_ego = pb.EgoTrajectories(), n_co = pb.CoTrajectories(), steps = pb.Steps();
-    const size_t ne = static_cast<size_t>(n_ego) * steps, nc = static_cast<size_t>(n_co) * steps;
+  void LaunchTrajectories() {
+    const size_t ne = static_cast<size_t>(host_.TotalEgo()) * host_.steps;
+    const size_t nc = static_cast<size_t>(host_.TotalCo()) * host_.steps;
     double* ex = d_ex_.Reserve(ne, "cudaMalloc ego x");
     double* ey = d_ey_.Reserve(ne, "cudaMalloc ego y");
     double* eyaw = d_eyaw_.Reserve(ne, "cudaMalloc ego yaw");
     double* cx = d_cx_.Reserve(nc, "cudaMalloc CO x");
     double* cy = d_cy_.Reserve(nc, "cudaMalloc CO y");
     double* cyaw = d_cyaw_.Reserve(nc, "cudaMalloc CO yaw");
-    TrajectoryKernel<<<Blocks(n_ego + n_co), kThreads>>>(d_sets_.get(), d_object_of_.get(),
-                                                         d_offset_.get(), n_ego, n_co, pb.sim, ex,
-                                                         ey, eyaw, cx, cy, cyaw);
+    TrajectoryKernel<<<Blocks(host_.TotalEgo() + host_.TotalCo()), kThreads>>>(
+        d_sets_.get(), layout_, sim_, ex, ey, eyaw, cx, cy, cyaw);
     Check(cudaGetLastError(), "after trajectory kernel launch");
-    TrigKernel<<<Blocks(ne), kThreads>>>(eyaw, ne, d_ec_.Reserve(ne, "cudaMalloc ego cos"),
-                                         d_es_.Reserve(ne, "cudaMalloc ego sin"));
-    Check(cudaGetLastError(), "after ego trig kernel launch");
-    TrigKernel<<<Blocks(nc), kThreads>>>(cyaw, nc, d_cc_.Reserve(nc, "cudaMalloc CO cos"),
-                                         d_cs_.Reserve(nc, "cudaMalloc CO sin"));
-    Check(cudaGetLastError(), "after CO trig kernel launch");
+    if (ne) {
+      TrigKernel<<<Blocks(ne), kThreads>>>(eyaw, ne, d_ec_.Reserve(ne, "cudaMalloc ego cos"),
+                                            d_es_.Reserve(ne, "cudaMalloc ego sin"));
+      Check(cudaGetLastError(), "after ego trig kernel launch");
+    }
+    if (nc) {
+      TrigKernel<<<Blocks(nc), kThreads>>>(cyaw, nc, d_cc_.Reserve(nc, "cudaMalloc CO cos"),
+                                            d_cs_.Reserve(nc, "cudaMalloc CO sin"));
+      Check(cudaGetLastError(), "after CO trig kernel launch");
+    }
   }
 
-  void LaunchCollisions(const internal::Problem& pb) {
-    const int n_ego = pb.EgoTrajectories(), n_co = pb.CoTrajectories();
-    const size_t pairs = static_cast<size_t>(n_ego) * n_co;
+  void LaunchCollisions() {
+    const long long pairs = host_.TotalPairs();
     std::int16_t* first = d_first_.Reserve(pairs, "cudaMalloc pair matrix");
     if (pairs == 0) return;
     CollisionKernel<<<Blocks(pairs), kThreads>>>(
-        n_ego, n_co, pb.Steps(), Poses{d_ex_.get(), d_ey_.get(), d_ec_.get(), d_es_.get()},
-        Poses{d_cx_.get(), d_cy_.get(), d_cc_.get(), d_cs_.get()}, pb.ego.half_length,
-        pb.ego.half_width, d_co_hl_.get(), d_co_hw_.get(), first);
+        layout_, pairs, Poses{d_ex_.get(), d_ey_.get(), d_ec_.get(), d_es_.get()},
+        Poses{d_cx_.get(), d_cy_.get(), d_cc_.get(), d_cs_.get()}, first);
     Check(cudaGetLastError(), "after collision kernel launch");
   }
 
-  // Device poses (step-major) -> host stores (trajectory-major), when a caller asks.
+  // Device poses (step-major) -> host stores (trajectory-major) of the batch's first problem.
   void SyncHost() const {
-    if (!host_stale_ || !pb_) return;
-    const int steps = pb_->Steps();
+    if (!host_stale_ || host_.problems == 0) return;
+    const int steps = host_.steps;
     auto fetch = [&](const DeviceArray<double>& dx, const DeviceArray<double>& dy,
-                     const DeviceArray<double>& dyaw, int count, internal::TrajectoryStore* out) {
+                     const DeviceArray<double>& dyaw, int total, int count,
+                     internal::TrajectoryStore* out) {
       out->Resize(count, steps);
       std::vector<double> x, y, yaw;
-      dx.Download(&x, static_cast<size_t>(count) * steps, "copy trajectories x");
-      dy.Download(&y, static_cast<size_t>(count) * steps, "copy trajectories y");
-      dyaw.Download(&yaw, static_cast<size_t>(count) * steps, "copy trajectories yaw");
+      dx.Download(&x, static_cast<size_t>(total) * steps, "copy trajectories x");
+      dy.Download(&y, static_cast<size_t>(total) * steps, "copy trajectories y");
+      dyaw.Download(&yaw, static_cast<size_t>(total) * steps, "copy trajectories yaw");
       for (int t = 0; t < count; ++t) {
         for (int n = 0; n < steps; ++n) {
-          out->x[out->Offset(t) + n] = x[static_cast<size_t>(n) * count + t];
-          out->y[out->Offset(t) + n] = y[static_cast<size_t>(n) * count + t];
-          out->yaw[out->Offset(t) + n] = yaw[static_cast<size_t>(n) * count + t];
+          out->x[out->Offset(t) + n] = x[static_cast<size_t>(n) * total + t];
+          out->y[out->Offset(t) + n] = y[static_cast<size_t>(n) * total + t];
+          out->yaw[out->Offset(t) + n] = yaw[static_cast<size_t>(n) * total + t];
         }
       }
     };
-    fetch(d_ex_, d_ey_, d_eyaw_, pb_->EgoTrajectories(), &ego_);
-    fetch(d_cx_, d_cy_, d_cyaw_, pb_->CoTrajectories(), &co_);
+    fetch(d_ex_, d_ey_, d_eyaw_, host_.TotalEgo(), host_.ego_base[1], &ego_);
+    fetch(d_cx_, d_cy_, d_cyaw_, host_.TotalCo(), host_.co_base[1], &co_);
     host_stale_ = false;
   }
 
-  const internal::Problem* pb_{nullptr};
+  BatchHost host_;
+  BatchLayout layout_{};
+  core::SimulationConfig sim_;
   mutable bool host_stale_{false};
   mutable internal::TrajectoryStore ego_, co_;
   DeviceArray<core::HypothesisSet> d_sets_;
-  DeviceArray<int> d_object_of_, d_offset_, d_hist_, d_events_;
-  DeviceArray<double> d_p_co_, d_p_ego_, d_co_hl_, d_co_hw_;
+  DeviceArray<int> d_set_base_, d_ego_base_, d_co_base_, d_obj_base_, d_out_base_;
+  DeviceArray<long long> d_pair_base_, d_ego_obj_base_;
+  DeviceArray<int> d_object_of_, d_co_offset_, d_hist_, d_events_;
+  DeviceArray<double> d_co_hl_, d_co_hw_, d_ego_hl_, d_ego_hw_, d_p_co_, d_p_ego_;
   DeviceArray<double> d_ex_, d_ey_, d_eyaw_, d_ec_, d_es_, d_cx_, d_cy_, d_cyaw_, d_cc_, d_cs_;
   DeviceArray<std::int16_t> d_first_;
   DeviceArray<double> d_contrib_, d_mass_, d_ego_col_, d_by_step_, d_by_obj_, d_out_;

@@ -2,10 +2,13 @@
 // The per-thread bodies of the CUDA backend's kernels, as plain CRIT_HD functions: the kernels
 // (cuda_backend.cu) only compute their index and call these. Because they are ordinary C++,
 // tests run them on the CPU over every index, with the device's data layout, and compare with
-// the CPU backend (tests/estimator/cuda/kernel_bodies_test.cc) — so the GPU path's logic is
+// the CPU backend (tests/estimator/cuda/kernel_bodies_test.cc), so the GPU path's logic is
 // checked even on machines without a GPU.
 //
-// Layouts: poses step-major, x[n * count + t]; pair matrix ego-major, [i * n_co + j].
+// Everything works on a BATCH of problems (one estimate = a batch of one): the hypotheses of
+// all problems are concatenated and BatchLayout's prefix sums say where each problem's part
+// starts. Layouts: poses step-major over the whole batch, x[n * total + t]; each problem's pair
+// matrix ego-major, [pair_base[p] + i * n_co + j].
 #include <cstddef>
 #include <cstdint>
 
@@ -24,28 +27,65 @@ struct Poses {
   const double* s;
 };
 
-struct RiskScratch {
-  int* histogram;    ///< n_ego x (steps + 1)
-  int* events;       ///< n_ego x n_co
-  double* contrib;   ///< n_ego x n_co
-  double* hit_mass;  ///< n_ego x n_obj
+/** Where each problem p of a batch lives (all prefix sums have problems + 1 entries). */
+struct BatchLayout {
+  int problems{0};
+  int steps{0};
+  int total_ego{0};
+  int total_co{0};
+  const int* set_base;               ///< [p]: index of problem p's ego set; its COs follow
+  const int* ego_base;               ///< prefix sums of ego trajectories
+  const int* co_base;                ///< prefix sums of CO trajectories
+  const long long* pair_base;        ///< prefix sums of n_ego * n_co
+  const int* obj_base;               ///< prefix sums of objects
+  const long long* ego_obj_base;     ///< prefix sums of n_ego * n_obj
+  const int* out_base;               ///< prefix sums of (steps + n_obj + 1) risk outputs
+  const int* co_object_of;           ///< [global CO trajectory]: LOCAL object index
+  const int* co_offset;              ///< [obj_base[p] + o]: object o's first LOCAL CO trajectory
+  const double* co_half_length;      ///< [global CO trajectory]
+  const double* co_half_width;
+  const double* ego_half_length;     ///< [p]
+  const double* ego_half_width;
 };
 
-/** Thread g < n_ego: ego hypothesis g; else CO trajectory g - n_ego. sets[0] is the ego's,
- *  sets[1 + o] CO o's. */
-CRIT_HD void TrajectoryBody(int g, const core::HypothesisSet* sets, const int* co_object_of,
-                            const int* co_offset, int n_ego, int n_co,
+/** The problem p with base[p] <= index < base[p + 1] (problems with an empty range are
+ *  skipped); base has problems + 1 entries. */
+template <typename T>
+CRIT_HD int ProblemOf(const T* base, int problems, T index) {
+  int lo = 0, hi = problems - 1;
+  while (lo < hi) {  // smallest p with base[p + 1] > index
+    const int mid = (lo + hi) / 2;
+    if (base[mid + 1] > index) hi = mid;
+    else lo = mid + 1;
+  }
+  return lo;
+}
+
+struct RiskScratch {
+  int* histogram;    ///< total_ego x (steps + 1)
+  int* events;       ///< one per pair
+  double* contrib;   ///< one per pair
+  double* hit_mass;  ///< n_ego x n_obj per problem (ego_obj_base)
+};
+
+/** Thread g < total_ego: that ego hypothesis; else CO trajectory g - total_ego. */
+CRIT_HD void TrajectoryBody(int g, const core::HypothesisSet* sets, const BatchLayout& b,
                             const core::SimulationConfig& cfg, double* ex, double* ey, double* eyaw,
                             double* cx, double* cy, double* cyaw) {
-  if (g < n_ego) {
-    const core::HypothesisSet& h = sets[0];
-    core::SimulateHypothesis(h, cfg, g / h.n_paths, g % h.n_paths, ex + g, ey + g, eyaw + g, n_ego);
-  } else if (g < n_ego + n_co) {
-    const int j = g - n_ego;
-    const int o = co_object_of[j];
-    const core::HypothesisSet& h = sets[1 + o];
-    const int t = j - co_offset[o];
-    core::SimulateHypothesis(h, cfg, t / h.n_paths, t % h.n_paths, cx + j, cy + j, cyaw + j, n_co);
+  if (g < b.total_ego) {
+    const int p = ProblemOf(b.ego_base, b.problems, g);
+    const core::HypothesisSet& h = sets[b.set_base[p]];
+    const int i = g - b.ego_base[p];
+    core::SimulateHypothesis(h, cfg, i / h.n_paths, i % h.n_paths, ex + g, ey + g, eyaw + g,
+                             b.total_ego);
+  } else if (g < b.total_ego + b.total_co) {
+    const int j = g - b.total_ego;
+    const int p = ProblemOf(b.co_base, b.problems, j);
+    const int o = b.co_object_of[j];
+    const core::HypothesisSet& h = sets[b.set_base[p] + 1 + o];
+    const int t = j - b.co_base[p] - b.co_offset[b.obj_base[p] + o];
+    core::SimulateHypothesis(h, cfg, t / h.n_paths, t % h.n_paths, cx + j, cy + j, cyaw + j,
+                             b.total_co);
   }
 }
 
@@ -54,22 +94,27 @@ CRIT_HD void TrigBody(size_t k, const double* yaw, double* c, double* s) {
   s[k] = std::sin(yaw[k]);
 }
 
-/** Thread k = i * n_co + j: the first colliding step (1-based, 0 = none) of ego trajectory i
- *  and CO trajectory j, with a bounding-circle test before the exact one and early exit. */
-CRIT_HD void CollisionBody(size_t k, int n_ego, int n_co, int steps, const Poses& ego,
-                           const Poses& co, double ego_hl, double ego_hw, const double* co_hl,
-                           const double* co_hw, std::int16_t* first) {
-  const int i = static_cast<int>(k / n_co), j = static_cast<int>(k % n_co);
-  const double reach =
-      core::BoundingRadius(ego_hl, ego_hw) + core::BoundingRadius(co_hl[j], co_hw[j]) + 1e-9;
+/** Thread k (a pair of the batch): the first colliding step (1-based, 0 = none) of its ego and
+ *  CO trajectory, with a bounding-circle test before the exact one and early exit. */
+CRIT_HD void CollisionBody(long long k, const BatchLayout& b, const Poses& ego, const Poses& co,
+                           std::int16_t* first) {
+  const int p = ProblemOf(b.pair_base, b.problems, k);
+  const int n_co = b.co_base[p + 1] - b.co_base[p];
+  const long long local = k - b.pair_base[p];
+  const int i = b.ego_base[p] + static_cast<int>(local / n_co);
+  const int j = b.co_base[p] + static_cast<int>(local % n_co);
+  const double ehl = b.ego_half_length[p], ehw = b.ego_half_width[p];
+  const double chl = b.co_half_length[j], chw = b.co_half_width[j];
+  const double reach = core::BoundingRadius(ehl, ehw) + core::BoundingRadius(chl, chw) + 1e-9;
   const double reach2 = reach * reach;
   std::int16_t hit = 0;
-  for (int n = 0; n < steps; ++n) {
-    const size_t a = static_cast<size_t>(n) * n_ego + i, b = static_cast<size_t>(n) * n_co + j;
-    const double dx = co.x[b] - ego.x[a], dy = co.y[b] - ego.y[a];
+  for (int n = 0; n < b.steps; ++n) {
+    const size_t a = static_cast<size_t>(n) * b.total_ego + i;
+    const size_t c = static_cast<size_t>(n) * b.total_co + j;
+    const double dx = co.x[c] - ego.x[a], dy = co.y[c] - ego.y[a];
     if (dx * dx + dy * dy > reach2) continue;
-    const core::OrientedBox<double> ba{ego.x[a], ego.y[a], ego.c[a], ego.s[a], ego_hl, ego_hw};
-    const core::OrientedBox<double> bb{co.x[b], co.y[b], co.c[b], co.s[b], co_hl[j], co_hw[j]};
+    const core::OrientedBox<double> ba{ego.x[a], ego.y[a], ego.c[a], ego.s[a], ehl, ehw};
+    const core::OrientedBox<double> bb{co.x[c], co.y[c], co.c[c], co.s[c], chl, chw};
     if (core::BoxesOverlap(ba, bb)) {
       hit = static_cast<std::int16_t>(n + 1);
       break;
@@ -78,19 +123,26 @@ CRIT_HD void CollisionBody(size_t k, int n_ego, int n_co, int steps, const Poses
   first[k] = hit;
 }
 
-/** Thread i: ego hypothesis i's colliding CO trajectories in chronological order (counting
- *  sort by step, stable in j), the paper's chronological approximation, and its split over
- *  steps and objects (not yet weighted by p_EGO). */
-CRIT_HD void RiskBody(int i, int n_co, int steps, int n_obj, const std::int16_t* first,
-                      const double* p_co, const int* object_of, const RiskScratch& w,
-                      double* ego_col, char* ego_hit, double* by_step, double* by_object) {
-  const std::int16_t* row = first + static_cast<size_t>(i) * n_co;
-  int* hist = w.histogram + static_cast<size_t>(i) * (steps + 1);
-  int* ev = w.events + static_cast<size_t>(i) * n_co;
-  double* contrib = w.contrib + static_cast<size_t>(i) * n_co;
-  double* mass = w.hit_mass + static_cast<size_t>(i) * n_obj;
-  double* step_row = by_step + static_cast<size_t>(i) * steps;
-  double* obj_row = by_object + static_cast<size_t>(i) * n_obj;
+/** Thread g (an ego hypothesis of the batch): its colliding CO trajectories in chronological
+ *  order (counting sort by step, stable in j), the paper's chronological approximation, and
+ *  its split over steps and objects (not yet weighted by p_EGO). */
+CRIT_HD void RiskBody(int g, const BatchLayout& b, const std::int16_t* first, const double* p_co,
+                      const RiskScratch& w, double* ego_col, char* ego_hit, double* by_step,
+                      double* by_object) {
+  const int p = ProblemOf(b.ego_base, b.problems, g);
+  const int i = g - b.ego_base[p];
+  const int n_co = b.co_base[p + 1] - b.co_base[p];
+  const int n_obj = b.obj_base[p + 1] - b.obj_base[p];
+  const int steps = b.steps;
+  const size_t pairs = static_cast<size_t>(b.pair_base[p]) + static_cast<size_t>(i) * n_co;
+  const size_t objs = static_cast<size_t>(b.ego_obj_base[p]) + static_cast<size_t>(i) * n_obj;
+  const std::int16_t* row = first + pairs;
+  int* hist = w.histogram + static_cast<size_t>(g) * (steps + 1);
+  int* ev = w.events + pairs;
+  double* contrib = w.contrib + pairs;
+  double* mass = w.hit_mass + objs;
+  double* step_row = by_step + static_cast<size_t>(g) * steps;
+  double* obj_row = by_object + objs;
   for (int n = 0; n <= steps; ++n) hist[n] = 0;
   for (int j = 0; j < n_co; ++j) {
     if (row[j] > 0) ++hist[row[j]];
@@ -109,9 +161,10 @@ CRIT_HD void RiskBody(int i, int n_co, int steps, int n_obj, const std::int16_t*
     obj_row[o] = 0.0;
   }
   for (int n = 0; n < steps; ++n) step_row[n] = 0.0;
-  ego_hit[i] = total > 0;
-  ego_col[i] = total > 0 ? core::ChronologicalCollisionProbability(total, ev, p_co, object_of,
-                                                                   n_obj, mass, contrib)
+  const int* object_of = b.co_object_of + b.co_base[p];
+  ego_hit[g] = total > 0;
+  ego_col[g] = total > 0 ? core::ChronologicalCollisionProbability(total, ev, p_co + b.co_base[p],
+                                                                   object_of, n_obj, mass, contrib)
                          : 0.0;
   for (int e = 0; e < total; ++e) {
     step_row[row[ev[e]] - 1] += contrib[e];
@@ -119,18 +172,23 @@ CRIT_HD void RiskBody(int i, int n_co, int steps, int n_obj, const std::int16_t*
   }
 }
 
-/** Thread q: output q (steps, then objects, then p_cra), summed over colliding ego hypotheses
- *  in ego order, as the CPU does. */
-CRIT_HD void ReduceBody(int q, int n_ego, int steps, int n_obj, const double* p_ego,
-                        const double* ego_col, const double* by_step, const double* by_object,
-                        double* out) {
+/** Thread q (a risk output of the batch: per problem its steps, objects, then p_cra): summed
+ *  over the problem's colliding ego hypotheses in ego order, as the CPU does. */
+CRIT_HD void ReduceBody(int q, const BatchLayout& b, const double* p_ego, const double* ego_col,
+                        const double* by_step, const double* by_object, double* out) {
+  const int p = ProblemOf(b.out_base, b.problems, q);
+  const int local = q - b.out_base[p];
+  const int steps = b.steps;
+  const int n_obj = b.obj_base[p + 1] - b.obj_base[p];
   double sum = 0.0;
-  for (int i = 0; i < n_ego; ++i) {
-    if (ego_col[i] == 0.0) continue;
-    const double v = q < steps           ? by_step[static_cast<size_t>(i) * steps + q]
-                     : q < steps + n_obj ? by_object[static_cast<size_t>(i) * n_obj + (q - steps)]
-                                         : ego_col[i];
-    sum += p_ego[i] * v;
+  for (int g = b.ego_base[p]; g < b.ego_base[p + 1]; ++g) {
+    if (ego_col[g] == 0.0) continue;
+    const size_t objs = static_cast<size_t>(b.ego_obj_base[p]) +
+                        static_cast<size_t>(g - b.ego_base[p]) * n_obj;
+    const double v = local < steps           ? by_step[static_cast<size_t>(g) * steps + local]
+                     : local < steps + n_obj ? by_object[objs + (local - steps)]
+                                             : ego_col[g];
+    sum += p_ego[g] * v;
   }
   out[q] = sum;
 }

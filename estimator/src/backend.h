@@ -28,6 +28,14 @@ class EstimatorBackend {
    *  Default: GenerateTrajectories, RecognizeCollisions, then the host risk assessment. */
   virtual void Run(const internal::Problem& problem, const Params& params, bool keep_pair_matrix,
                    Result* result);
+  /** Run on every problem of a batch. Default: one after the other; the CUDA backend runs the
+   *  whole batch in one set of launches. */
+  virtual void RunBatch(const std::vector<const internal::Problem*>& problems, const Params& params,
+                        bool keep_pair_matrix, std::vector<Result>* results) {
+    for (size_t k = 0; k < problems.size(); ++k) {
+      Run(*problems[k], params, keep_pair_matrix, &(*results)[k]);
+    }
+  }
 };
 
 }  // namespace criticality

@@ -217,3 +217,24 @@ TEST(Estimator, PedestriansAreEstimated) {
 
 }  // namespace
 }  // namespace criticality
+
+namespace criticality {
+namespace {
+TEST(Estimator, BatchGivesWhatEachEstimateGives) {
+  std::vector<Scene> scenes{bench::PaperSceneS1(), testing::RandomScene(3, 3, 1, true),
+                            testing::RandomScene(10, 0, 0, false), bench::PaperSceneS2()};
+  EstimatorOptions opt;
+  opt.keep_pair_matrix = true;
+  Estimator estimator(Params{}, opt);
+  const std::vector<Result> batch = estimator.EstimateBatch(scenes);
+  ASSERT_EQ(batch.size(), scenes.size());
+  for (size_t k = 0; k < scenes.size(); ++k) {
+    const Result one = estimator.Estimate(scenes[k]);
+    EXPECT_EQ(batch[k].p_collision, one.p_collision) << k;
+    EXPECT_EQ(batch[k].first_collision_step, one.first_collision_step) << k;
+    EXPECT_EQ(batch[k].counts.pose_combinations, one.counts.pose_combinations) << k;
+  }
+  EXPECT_TRUE(estimator.EstimateBatch({}).empty());
+}
+}  // namespace
+}  // namespace criticality

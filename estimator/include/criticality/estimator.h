@@ -56,7 +56,8 @@ class Estimator {
   Result Estimate(const Scene& scene);
 
   /** Estimates many scenes (e.g. every vehicle of a network as ego) with the same params and
-   *  backend, in order. Results are those of Estimate() on each scene. */
+   *  backend, in one call: the cuda backend runs the whole batch in one set of kernel launches.
+   *  Results are those of Estimate() on each scene; module times are per-scene means. */
   std::vector<Result> EstimateBatch(const std::vector<Scene>& scenes);
 
   const Params& params() const { return params_; }

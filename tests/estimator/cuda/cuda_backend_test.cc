@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "../test_scenes.h"
 #include "bench/paper_scenes.h"
@@ -71,6 +72,21 @@ TEST(CudaBackend, BuffersAreReusedAcrossSizes) {
   EXPECT_EQ(gpu.Estimate(bench::PaperSceneS2()).p_collision, s2);     // deterministic on the device
   Estimator cpu(Params{});
   EXPECT_NEAR(cpu.Estimate(bench::PaperSceneS1()).p_collision, s1, 1e-4);
+}
+
+TEST(CudaBackend, BatchInOneLaunchMatchesTheCpu) {
+  SKIP_WITHOUT_DEVICE();
+  std::vector<Scene> scenes{bench::PaperSceneS1(), testing::RandomScene(9, 0, 0, false),
+                            bench::PaperSceneS2()};
+  for (unsigned seed = 1; seed <= 5; ++seed) scenes.push_back(testing::RandomScene(seed, 4, 2, true));
+  EstimatorOptions gpu_opt;
+  gpu_opt.backend = Backend::kCuda;
+  Estimator gpu(Params{}, gpu_opt), cpu(Params{});
+  const std::vector<Result> batch = gpu.EstimateBatch(scenes);
+  ASSERT_EQ(batch.size(), scenes.size());
+  for (size_t k = 0; k < scenes.size(); ++k) {
+    EXPECT_NEAR(batch[k].p_collision, cpu.Estimate(scenes[k]).p_collision, 1e-4) << k;
+  }
 }
 
 TEST(CudaBackend, MissingDeviceIsAClearError) {

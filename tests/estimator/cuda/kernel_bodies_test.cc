@@ -4,8 +4,11 @@
 // logic on every machine; on a GPU, cuda_backend_test checks the device itself.
 #include "cuda/kernel_bodies.h"
 
+#include "cuda/batch_layout.h"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "../test_scenes.h"
@@ -17,92 +20,101 @@ namespace criticality {
 namespace {
 
 struct Emulated {
+  cuda::BatchHost batch;
   std::vector<std::int16_t> first;
-  std::vector<double> out;  // steps, objects, p_cra
+  std::vector<double> out;  // per problem: steps, objects, p_cra
   std::vector<double> ego_col;
   std::vector<char> ego_hit;
 };
 
-// What CudaBackend::Run launches, as loops over the thread indices.
-Emulated RunKernelBodies(const internal::Problem& pb) {
-  const int n_ego = pb.EgoTrajectories(), n_co = pb.CoTrajectories(), steps = pb.Steps();
-  const int n_obj = static_cast<int>(pb.cos.size());
-  std::vector<core::HypothesisSet> sets{pb.ego};
-  sets.insert(sets.end(), pb.cos.begin(), pb.cos.end());
-  const size_t ne = static_cast<size_t>(n_ego) * steps, nc = static_cast<size_t>(n_co) * steps;
-  std::vector<double> ex(ne), ey(ne), eyaw(ne), ec(ne), es(ne), cx(nc), cy(nc), cyaw(nc), cc(nc),
-      cs(nc);
-  for (int g = 0; g < n_ego + n_co; ++g) {
-    cuda::TrajectoryBody(g, sets.data(), pb.co_object_of.data(), pb.co_offset.data(), n_ego, n_co,
-                         pb.sim, ex.data(), ey.data(), eyaw.data(), cx.data(), cy.data(),
-                         cyaw.data());
+// What CudaBackend::RunBatch launches, as loops over the thread indices.
+Emulated RunKernelBodies(const std::vector<const internal::Problem*>& problems) {
+  Emulated e;
+  e.batch = cuda::MakeBatch(problems);
+  const cuda::BatchHost& h = e.batch;
+  const cuda::BatchLayout b = h.HostView();
+  const size_t ne = static_cast<size_t>(h.TotalEgo()) * h.steps;
+  const size_t nc = static_cast<size_t>(h.TotalCo()) * h.steps;
+  std::vector<double> ex(ne), ey(ne), eyaw(ne), ec(ne), es(ne), cx(nc), cy(nc), cyaw(nc), cc(nc), cs(nc);
+  for (int g = 0; g < h.TotalEgo() + h.TotalCo(); ++g) {
+    cuda::TrajectoryBody(g, h.sets.data(), b, problems.front()->sim, ex.data(), ey.data(), eyaw.data(),
+                         cx.data(), cy.data(), cyaw.data());
   }
   for (size_t k = 0; k < ne; ++k) cuda::TrigBody(k, eyaw.data(), ec.data(), es.data());
   for (size_t k = 0; k < nc; ++k) cuda::TrigBody(k, cyaw.data(), cc.data(), cs.data());
-  std::vector<double> hl(n_co), hw(n_co);
-  for (int j = 0; j < n_co; ++j) {
-    hl[j] = pb.cos[pb.co_object_of[j]].half_length;
-    hw[j] = pb.cos[pb.co_object_of[j]].half_width;
+  e.first.assign(h.TotalPairs(), -1);
+  for (long long k = 0; k < h.TotalPairs(); ++k) {
+    cuda::CollisionBody(k, b, cuda::Poses{ex.data(), ey.data(), ec.data(), es.data()},
+                        cuda::Poses{cx.data(), cy.data(), cc.data(), cs.data()}, e.first.data());
   }
-  Emulated e;
-  e.first.assign(static_cast<size_t>(n_ego) * n_co, -1);
-  for (size_t k = 0; k < e.first.size(); ++k) {
-    cuda::CollisionBody(k, n_ego, n_co, steps,
-                        cuda::Poses{ex.data(), ey.data(), ec.data(), es.data()},
-                        cuda::Poses{cx.data(), cy.data(), cc.data(), cs.data()}, pb.ego.half_length,
-                        pb.ego.half_width, hl.data(), hw.data(), e.first.data());
-  }
-  std::vector<int> hist(static_cast<size_t>(n_ego) * (steps + 1)),
-      events(static_cast<size_t>(n_ego) * n_co);
-  std::vector<double> contrib(events.size()), mass(static_cast<size_t>(n_ego) * std::max(n_obj, 1));
-  std::vector<double> by_step(ne), by_obj(static_cast<size_t>(n_ego) * std::max(n_obj, 1));
-  e.ego_col.assign(n_ego, -1.0);
-  e.ego_hit.assign(n_ego, 2);
+  const size_t ego_obj = std::max<long long>(h.TotalEgoObj(), 1);
+  std::vector<int> hist(static_cast<size_t>(h.TotalEgo()) * (h.steps + 1)), events(h.TotalPairs());
+  std::vector<double> contrib(h.TotalPairs()), mass(ego_obj), by_step(ne), by_obj(ego_obj);
+  e.ego_col.assign(h.TotalEgo(), -1.0);
+  e.ego_hit.assign(h.TotalEgo(), 2);
   const cuda::RiskScratch w{hist.data(), events.data(), contrib.data(), mass.data()};
-  for (int i = 0; i < n_ego; ++i) {
-    cuda::RiskBody(i, n_co, steps, n_obj, e.first.data(), pb.co_probability.data(),
-                   pb.co_object_of.data(), w, e.ego_col.data(), e.ego_hit.data(), by_step.data(),
-                   by_obj.data());
+  for (int g = 0; g < h.TotalEgo(); ++g) {
+    cuda::RiskBody(g, b, e.first.data(), h.p_co.data(), w, e.ego_col.data(), e.ego_hit.data(),
+                   by_step.data(), by_obj.data());
   }
-  e.out.assign(steps + n_obj + 1, -1.0);
-  for (int q = 0; q <= steps + n_obj; ++q) {
-    cuda::ReduceBody(q, n_ego, steps, n_obj, pb.ego_probability.data(), e.ego_col.data(),
-                     by_step.data(), by_obj.data(), e.out.data());
+  e.out.assign(h.TotalOut(), -1.0);
+  for (int q = 0; q < h.TotalOut(); ++q) {
+    cuda::ReduceBody(q, b, h.p_ego.data(), e.ego_col.data(), by_step.data(), by_obj.data(), e.out.data());
   }
   return e;
 }
 
-void ExpectSameAsCpu(const Scene& scene, const std::string& what) {
-  const internal::Problem pb = internal::BuildProblem(scene, Params{});
-  const Emulated e = RunKernelBodies(pb);
+// Runs the scenes as one batch through the kernel bodies and compares every problem's part
+// with a separate CPU estimate of its scene.
+void ExpectBatchSameAsCpu(const std::vector<Scene>& scenes, const std::string& what) {
+  std::vector<internal::Problem> problems;
+  for (const Scene& scene : scenes) problems.push_back(internal::BuildProblem(scene, Params{}));
+  std::vector<const internal::Problem*> views;
+  for (const internal::Problem& pb : problems) views.push_back(&pb);
+  const Emulated e = RunKernelBodies(views);
+  const cuda::BatchHost& h = e.batch;
   EstimatorOptions opt;
   opt.keep_pair_matrix = true;
   Estimator cpu(Params{}, opt);
-  const Result r = cpu.Estimate(scene);
-  ASSERT_EQ(e.first.size(), r.first_collision_step.size()) << what;
-  EXPECT_TRUE(e.first == r.first_collision_step) << what << ": pair matrices differ";
-  const int steps = pb.Steps(), n_obj = static_cast<int>(pb.cos.size());
-  for (int n = 0; n < steps; ++n)
-    EXPECT_EQ(e.out[n], r.first_collision_pmf[n]) << what << " step " << n;
-  for (int o = 0; o < n_obj; ++o)
-    EXPECT_EQ(e.out[steps + o], r.objects[o].contribution) << what << " object " << o;
-  EXPECT_EQ(e.out[steps + n_obj], r.p_collision) << what;
-  EXPECT_TRUE(e.ego_col == r.ego_collision_probability) << what;
-  int free = 0;
-  for (char h : e.ego_hit) free += h == 0;
-  EXPECT_EQ(free, r.collision_free_ego_trajectories) << what;
+  for (size_t p = 0; p < scenes.size(); ++p) {
+    const std::string where = what + ", problem " + std::to_string(p);
+    const Result r = cpu.Estimate(scenes[p]);
+    const std::vector<std::int16_t> first(e.first.begin() + h.pair_base[p], e.first.begin() + h.pair_base[p + 1]);
+    EXPECT_TRUE(first == r.first_collision_step) << where << ": pair matrices differ";
+    const int steps = h.steps, n_obj = static_cast<int>(problems[p].cos.size());
+    const double* out = e.out.data() + h.out_base[p];
+    for (int n = 0; n < steps; ++n) EXPECT_EQ(out[n], r.first_collision_pmf[n]) << where << " step " << n;
+    for (int o = 0; o < n_obj; ++o) EXPECT_EQ(out[steps + o], r.objects[o].contribution) << where << " object " << o;
+    EXPECT_EQ(out[steps + n_obj], r.p_collision) << where;
+    const std::vector<double> col(e.ego_col.begin() + h.ego_base[p], e.ego_col.begin() + h.ego_base[p + 1]);
+    EXPECT_TRUE(col == r.ego_collision_probability) << where;
+    int free = 0;
+    for (int g = h.ego_base[p]; g < h.ego_base[p + 1]; ++g) free += e.ego_hit[g] == 0;
+    EXPECT_EQ(free, r.collision_free_ego_trajectories) << where;
+  }
 }
 
 TEST(CudaKernelBodies, PaperScenesMatchTheCpuBackendExactly) {
-  ExpectSameAsCpu(bench::PaperSceneS1(), "S1");
-  ExpectSameAsCpu(bench::PaperSceneS2(), "S2");
+  ExpectBatchSameAsCpu({bench::PaperSceneS1()}, "S1 alone");
+  ExpectBatchSameAsCpu({bench::PaperSceneS2()}, "S2 alone");
 }
 
-TEST(CudaKernelBodies, SeededRandomScenesMatchTheCpuBackendExactly) {
-  for (unsigned seed = 1; seed <= 10; ++seed) {
-    ExpectSameAsCpu(testing::RandomScene(seed, seed <= 8 ? 4 : 0, 2, seed % 2 == 0),
-                    "seed " + std::to_string(seed));
-  }
+TEST(CudaKernelBodies, OneBatchOfMixedScenesMatchesTheCpuBackendExactly) {
+  // Different sizes in one batch, an ego alone (no pairs) in the middle, pedestrians.
+  std::vector<Scene> scenes{bench::PaperSceneS1(), bench::PaperSceneS2(),
+                            testing::RandomScene(9, 0, 0, false)};
+  for (unsigned seed = 1; seed <= 6; ++seed) scenes.push_back(testing::RandomScene(seed, 4, 2, seed % 2 == 0));
+  ExpectBatchSameAsCpu(scenes, "mixed batch");
+}
+
+TEST(CudaKernelBodies, ProblemOfSkipsEmptyRanges) {
+  const long long base[] = {0, 5, 5, 5, 9, 12};  // problems 1 and 2 are empty
+  EXPECT_EQ(cuda::ProblemOf(base, 5, 0LL), 0);
+  EXPECT_EQ(cuda::ProblemOf(base, 5, 4LL), 0);
+  EXPECT_EQ(cuda::ProblemOf(base, 5, 5LL), 3);
+  EXPECT_EQ(cuda::ProblemOf(base, 5, 8LL), 3);
+  EXPECT_EQ(cuda::ProblemOf(base, 5, 9LL), 4);
+  EXPECT_EQ(cuda::ProblemOf(base, 5, 11LL), 4);
 }
 
 }  // namespace

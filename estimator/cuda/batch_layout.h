@@ -1,0 +1,69 @@
+#pragma once
+// Host side of a batch of problems for the CUDA kernels (kernel_bodies.h): the concatenated
+// hypothesis sets, probabilities and box sizes, and the prefix sums of BatchLayout. Plain C++:
+// used by the CUDA backend (which uploads it) and by tests (which run the kernel bodies on it).
+#include <vector>
+
+#include "cuda/kernel_bodies.h"
+#include "src/problem.h"
+
+namespace criticality::cuda {
+
+struct BatchHost {
+  int problems{0};
+  int steps{0};
+  std::vector<core::HypothesisSet> sets;
+  std::vector<int> set_base, ego_base{0}, co_base{0}, obj_base{0}, out_base{0};
+  std::vector<long long> pair_base{0}, ego_obj_base{0};
+  std::vector<int> co_object_of, co_offset;
+  std::vector<double> co_half_length, co_half_width, ego_half_length, ego_half_width;
+  std::vector<double> p_co, p_ego;
+
+  int TotalEgo() const { return ego_base.back(); }
+  int TotalCo() const { return co_base.back(); }
+  long long TotalPairs() const { return pair_base.back(); }
+  int TotalOut() const { return out_base.back(); }
+  long long TotalEgoObj() const { return ego_obj_base.back(); }
+
+  /** A layout whose pointers point into these host vectors. */
+  BatchLayout HostView() const {
+    return BatchLayout{problems,        steps,           TotalEgo(),        TotalCo(),
+                       set_base.data(), ego_base.data(), co_base.data(),    pair_base.data(),
+                       obj_base.data(), ego_obj_base.data(), out_base.data(), co_object_of.data(),
+                       co_offset.data(), co_half_length.data(), co_half_width.data(),
+                       ego_half_length.data(), ego_half_width.data()};
+  }
+};
+
+/** Concatenates problems (all with the same number of steps). */
+inline BatchHost MakeBatch(const std::vector<const internal::Problem*>& problems) {
+  BatchHost b;
+  b.problems = static_cast<int>(problems.size());
+  b.steps = problems.empty() ? 0 : problems.front()->Steps();
+  for (const internal::Problem* pb : problems) {
+    const int n_ego = pb->EgoTrajectories(), n_co = pb->CoTrajectories();
+    const int n_obj = static_cast<int>(pb->cos.size());
+    b.set_base.push_back(static_cast<int>(b.sets.size()));
+    b.sets.push_back(pb->ego);
+    b.sets.insert(b.sets.end(), pb->cos.begin(), pb->cos.end());
+    b.ego_base.push_back(b.ego_base.back() + n_ego);
+    b.co_base.push_back(b.co_base.back() + n_co);
+    b.obj_base.push_back(b.obj_base.back() + n_obj);
+    b.pair_base.push_back(b.pair_base.back() + static_cast<long long>(n_ego) * n_co);
+    b.ego_obj_base.push_back(b.ego_obj_base.back() + static_cast<long long>(n_ego) * n_obj);
+    b.out_base.push_back(b.out_base.back() + b.steps + n_obj + 1);
+    b.co_object_of.insert(b.co_object_of.end(), pb->co_object_of.begin(), pb->co_object_of.end());
+    b.co_offset.insert(b.co_offset.end(), pb->co_offset.begin(), pb->co_offset.end() - 1);
+    for (int j = 0; j < n_co; ++j) {
+      b.co_half_length.push_back(pb->cos[pb->co_object_of[j]].half_length);
+      b.co_half_width.push_back(pb->cos[pb->co_object_of[j]].half_width);
+    }
+    b.ego_half_length.push_back(pb->ego.half_length);
+    b.ego_half_width.push_back(pb->ego.half_width);
+    b.p_co.insert(b.p_co.end(), pb->co_probability.begin(), pb->co_probability.end());
+    b.p_ego.insert(b.p_ego.end(), pb->ego_probability.begin(), pb->ego_probability.end());
+  }
+  return b;
+}
+
+}  // namespace criticality::cuda
