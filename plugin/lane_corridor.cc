@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "criticality/estimator.h"
+
 namespace criticality::plugin {
 
 double PolylineLength(const std::vector<Point2>& line) {
@@ -51,15 +53,24 @@ LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const core::Pose2& 
     set.left = Lane{divider(half + c.left->width_m), divider(half), c.left->counter_traffic};
   if (c.right)
     set.right = Lane{divider(-half), divider(-half - c.right->width_m), c.right->counter_traffic};
-  // The estimator needs the samples to run forward in the vehicle's frame.
-  for (const std::optional<Lane>* lane : {&set.own, &set.left, &set.right}) {
-    if (!*lane) continue;
-    for (const LaneDivider* d : {&(*lane)->left, &(*lane)->right}) {
+  // The estimator needs every lane's samples to run forward in the vehicle's frame with the
+  // left divider left of the right one. Offsetting a tight turn's centre line can break that
+  // (the dividers cross): such a neighbour is left out; such an own lane makes the whole set
+  // unusable, and the estimator then uses a virtual lane.
+  auto usable = [](const std::optional<Lane>& lane) {
+    for (const LaneDivider* d : {&lane->left, &lane->right}) {
       if (!(d->points[1].x > d->points[0].x + 0.5 && d->points[2].x > d->points[1].x + 0.5)) {
-        return LaneSet{};
+        return false;
       }
     }
-  }
+    for (int i = 0; i < 3; ++i) {
+      if (!(lane->left.points[i].y > lane->right.points[i].y + 0.1)) return false;
+    }
+    return LaneProblem(*lane).empty();  // the estimator's own test (fit, width at the observer)
+  };
+  if (!usable(set.own)) return LaneSet{};
+  if (set.left && !usable(set.left)) set.left.reset();
+  if (set.right && !usable(set.right)) set.right.reset();
   return set;
 }
 

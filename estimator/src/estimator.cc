@@ -8,6 +8,7 @@
 #include "src/backend.h"
 #include "src/problem.h"
 #include "src/risk_assessment.h"
+#include "src/street_data.h"
 
 #ifdef CRIT_WITH_CUDA
 #include "cuda/cuda_backend.h"
@@ -45,6 +46,15 @@ std::string BackendName(Backend backend) {
       return "auto";
   }
   return "unknown";
+}
+
+std::string LaneProblem(const Lane& lane) {
+  try {
+    internal::FitLanes(LaneSet{lane, std::nullopt, std::nullopt}, "lane");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 bool CudaUsable(std::string* why) {

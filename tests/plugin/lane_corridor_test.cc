@@ -64,6 +64,29 @@ TEST(LaneCorridor, ContinuesAroundABendIntoTheNextLane) {
   EXPECT_FALSE(SampleLaneSet(c, 20.0, core::Pose2{10.0, 0.0, 0.0}).own);
 }
 
+TEST(LaneCorridor, DividersThatCrossInATightTurnAreLeftOut) {
+  // A 90 deg right turn with a 4 m radius 8 m ahead: shifted 5 m to the right of the centre
+  // line (the right neighbour's far divider), the curve folds over itself and the dividers
+  // cross; the own lane (+-1.6 m) stays usable.
+  LaneCorridor c;
+  c.centre = {{0, 0}, {8, 0}};
+  for (int k = 1; k <= 9; ++k) {
+    const double a = core::kPi / 2 * k / 9.0;
+    c.centre.push_back(Point2{8 + 4 * std::sin(a), -4 + 4 * std::cos(a)});
+  }
+  c.centre.push_back(Point2{12, -40});
+  c.position_m = 0.0;
+  c.width_m = 3.2;
+  c.right = NeighbourLane{3.2, false};
+  const LaneSet set = SampleLaneSet(c, 12.0, core::Pose2{0.0, 0.0, 0.0});
+  if (set.own) {
+    for (int i = 0; i < 3; ++i) EXPECT_GT(set.own->left.points[i].y, set.own->right.points[i].y);
+  }
+  if (set.right) {
+    for (int i = 0; i < 3; ++i) EXPECT_GT(set.right->left.points[i].y, set.right->right.points[i].y);
+  }
+}
+
 TEST(LaneCorridor, VehicleAcrossItsLaneGetsNoLanes) {
   LaneCorridor c;
   c.centre = {{0, 0}, {100, 0}};

@@ -27,6 +27,12 @@ std::string BackendName(Backend backend);
  *  missing (no CUDA in this build, no device, driver too old...). */
 bool CudaUsable(std::string* why);
 
+/** Empty when the estimator can use `lane` as given (its dividers define y(x) in the observer's
+ *  frame and the lane has a positive width at the observer); otherwise why not. Lets a caller
+ *  that builds lanes from a map (the SUMO driver) leave out a lane instead of failing the
+ *  estimate. */
+std::string LaneProblem(const Lane& lane);
+
 /** Execution settings (not part of the algorithm). */
 struct EstimatorOptions {
   Backend backend{Backend::kCpu};
