@@ -134,6 +134,15 @@ void RunDriver(const DriverOptions& o, std::ostream& summary) {
           egos.erase(id);
         }
         arrived.insert(id);
+        // A named ego whose route ends while the simulation goes on would silently stop being
+        // estimated: that is a scenario error (an ego arriving with the run's end is fine).
+        const bool named = !o.all_vehicles && std::count(o.egos.begin(), o.egos.end(), id);
+        const bool run_goes_on = world->ExpectedObjects() > 0 && (end < 0.0 || t < end - 1e-9);
+        if (named && run_goes_on) {
+          throw EgoError("ego '" + id + "' arrived (its route ended) at t = " + std::to_string(t) +
+                         " s while the simulation goes on; give it a route that lasts the run, "
+                         "stop the run then with --end, or use --all-vehicles");
+        }
       }
       // SUMO reports an overlapping pair at every step (collision.action warn): count events.
       std::set<std::string> now_pairs;
@@ -224,11 +233,6 @@ void RunDriver(const DriverOptions& o, std::ostream& summary) {
                        t, steps / std::max(secs, 1e-9), current.size(), warnings, collisions);
           last_print = wall;
         }
-      }
-      if (!o.all_vehicles && !o.egos.empty() && arrived.size() > 0 &&
-          std::all_of(o.egos.begin(), o.egos.end(),
-                      [&](const std::string& e) { return arrived.count(e); })) {
-        break;  // every ego has finished its route
       }
     }
     if (tty) std::fprintf(stderr, "\n");

@@ -177,6 +177,22 @@ PY
     expect_error 2 "unknown action" --config "$cfg" --event "1 ego fly 3" --output "$work/b6.sqlite"
     expect_error 2 "HOST:PORT" --connect nonsense --ego ego --output "$work/b7.sqlite"
     expect_error 2 "no ego" -c "$scenarios/rear_end/rear_end.sumocfg" --output "$work/b8.sqlite"
+    # An ego whose route ends (arrivalPos) while another vehicle drives on.
+    cat > "$work/arrive.rou.xml" <<'XML'
+<routes>
+  <vType id="car" length="4.5" width="1.8" sigma="0"/>
+  <vehicle id="other" type="car" depart="0" departLane="0" departPos="5" departSpeed="20"><route edges="WE"/></vehicle>
+  <vehicle id="ego" type="car" depart="0" departLane="1" departPos="10" departSpeed="30" arrivalPos="300"><route edges="WE"/></vehicle>
+</routes>
+XML
+    printf '<configuration><input><net-file value="%s"/><route-files value="arrive.rou.xml"/></input><time><end value="60"/><step-length value="0.1"/></time></configuration>\n' \
+      "$scenarios/../sumo_nets/straight_3lane/straight_3lane.net.xml" > "$work/arrive.sumocfg"
+    rm -f "$work/b9.sqlite"
+    expect_error 5 "arrived" -c "$work/arrive.sumocfg" --ego ego --output "$work/b9.sqlite"
+    check "an arriving ego keeps its completed steps" test "$(q "$work/b9.sqlite" "select count(*) from steps")" -ge 50
+    rm -f "$work/b10.sqlite"
+    check "the same run stopped before the ego arrives (--end) is fine" \
+      "$driver" --no-progress -c "$work/arrive.sumocfg" --ego ego --end 8.5 --output "$work/b10.sqlite"
     ;;
   *) echo "unknown case $case"; exit 2 ;;
 esac
