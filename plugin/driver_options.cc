@@ -113,7 +113,8 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
                    "run.sqlite\n"
                 << all
                 << "\nOn exit it prints one JSON summary line. Exit codes: 0 done, 2 bad "
-                   "options or input, 3 SUMO error, 4 results could not be written, 5 ego error.\n";
+                   "options or input, 3 SUMO error, 4 results could not be written, 5 ego error (never "
+                   "departed; arrived or teleported while the run goes on).\n";
       out.exit_now = true;
       return out;
     }
