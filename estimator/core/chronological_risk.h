@@ -13,6 +13,8 @@
 // Trajectories of the same object exclude each other (an object follows one), so they are not
 // scaled by each other. The contributions add up to 1 - prod_o (1 - q_o), q_o = an object's
 // colliding mass: <= 1, and exactly 1 when every hypothesis collides.
+#include <cstdint>
+
 #include "core/hd.h"
 
 namespace criticality::core {
@@ -42,6 +44,50 @@ CRIT_HD double ChronologicalCollisionProbability(int n_events, const int* event_
     total += c;
   }
   return total;
+}
+
+/** Everything risk assessment needs of ONE ego hypothesis, from its row of the pair matrix
+ *  (first colliding step of each CO trajectory, 1-based, 0 = none): its colliding CO
+ *  trajectories in chronological order (a counting sort by step, stable in the trajectory
+ *  index, so ties go by object, then hypothesis), the chronological approximation above, and
+ *  how its collision probability splits over steps and objects (not weighted by p_EGO).
+ *  Shared by the CPU and CUDA backends.
+ *  @param histogram scratch of steps + 1 ints; events, contribution scratch of n_co entries;
+ *         hit_mass scratch of n_obj values (all overwritten)
+ *  @param by_step out: steps values; by_object out: n_obj values (overwritten)
+ *  @param n_events out: the number of colliding CO trajectories
+ *  @returns the probability that this ego hypothesis collides. */
+CRIT_HD double SplitEgoRisk(const std::int16_t* row, int n_co, int steps, int n_obj,
+                            const double* p_co, const int* object_of, int* histogram, int* events,
+                            double* contribution, double* hit_mass, double* by_step,
+                            double* by_object, int* n_events) {
+  for (int n = 0; n <= steps; ++n) histogram[n] = 0;
+  for (int j = 0; j < n_co; ++j) {
+    if (row[j] > 0) ++histogram[row[j]];
+  }
+  int total = 0;
+  for (int n = 1; n <= steps; ++n) {  // counts -> start offsets
+    const int c = histogram[n];
+    histogram[n] = total;
+    total += c;
+  }
+  for (int j = 0; j < n_co; ++j) {
+    if (row[j] > 0) events[histogram[row[j]]++] = j;
+  }
+  for (int o = 0; o < n_obj; ++o) {
+    hit_mass[o] = 0.0;
+    by_object[o] = 0.0;
+  }
+  for (int n = 0; n < steps; ++n) by_step[n] = 0.0;
+  *n_events = total;
+  if (total == 0) return 0.0;
+  const double p = ChronologicalCollisionProbability(total, events, p_co, object_of, n_obj,
+                                                     hit_mass, contribution);
+  for (int e = 0; e < total; ++e) {
+    by_step[row[events[e]] - 1] += contribution[e];
+    by_object[object_of[events[e]]] += contribution[e];
+  }
+  return p;
 }
 
 }  // namespace criticality::core

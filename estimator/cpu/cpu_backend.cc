@@ -73,7 +73,7 @@ void CpuBackend::FinishSpan(const TrajectoryStore& t, std::vector<double>* c,
   }
 }
 
-void CpuBackend::ComputeBlockBounds(const TrajectoryStore& t, BlockBounds* b) const {
+void CpuBackend::ResizeBounds(const TrajectoryStore& t, BlockBounds* b) const {
   const int blocks = static_cast<int>(block_begin_.size()) - 1;
   const size_t n = static_cast<size_t>(t.trajectories) * blocks;
   b->cx.resize(n);
@@ -99,8 +99,8 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   phase_block_.push_back(static_cast<int>(block_begin_.size()));
   block_begin_.push_back(steps);
   const int blocks = static_cast<int>(block_begin_.size()) - 1;
-  ComputeBlockBounds(ego_, &ego_bounds_);
-  ComputeBlockBounds(co_, &co_bounds_);
+  ResizeBounds(ego_, &ego_bounds_);
+  ResizeBounds(co_, &co_bounds_);
   ego_cos_.resize(ego_.yaw.size());
   ego_sin_.resize(ego_.yaw.size());
   co_cos_.resize(co_.yaw.size());

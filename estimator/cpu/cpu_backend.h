@@ -40,7 +40,8 @@ class CpuBackend final : public EstimatorBackend {
   struct BlockBounds {
     std::vector<double> cx, cy, r;  ///< [trajectory * blocks + block]
   };
-  void ComputeBlockBounds(const internal::TrajectoryStore& t, BlockBounds* b) const;
+  /** Sizes b for t's trajectories (FinishSpan fills it). */
+  void ResizeBounds(const internal::TrajectoryStore& t, BlockBounds* b) const;
   // cos/sin of steps [n0, n1) and bounds of blocks [q0, q1) of one trajectory.
   void FinishSpan(const internal::TrajectoryStore& t, std::vector<double>* c,
                   std::vector<double>* s, BlockBounds* b, int trajectory, int n0, int n1, int q0,

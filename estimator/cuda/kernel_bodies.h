@@ -33,18 +33,18 @@ struct BatchLayout {
   int steps{0};
   int total_ego{0};
   int total_co{0};
-  const int* set_base;               ///< [p]: index of problem p's ego set; its COs follow
-  const int* ego_base;               ///< prefix sums of ego trajectories
-  const int* co_base;                ///< prefix sums of CO trajectories
-  const long long* pair_base;        ///< prefix sums of n_ego * n_co
-  const int* obj_base;               ///< prefix sums of objects
-  const long long* ego_obj_base;     ///< prefix sums of n_ego * n_obj
-  const int* out_base;               ///< prefix sums of (steps + n_obj + 1) risk outputs
-  const int* co_object_of;           ///< [global CO trajectory]: LOCAL object index
-  const int* co_offset;              ///< [obj_base[p] + o]: object o's first LOCAL CO trajectory
-  const double* co_half_length;      ///< [global CO trajectory]
+  const int* set_base;            ///< [p]: index of problem p's ego set; its COs follow
+  const int* ego_base;            ///< prefix sums of ego trajectories
+  const int* co_base;             ///< prefix sums of CO trajectories
+  const long long* pair_base;     ///< prefix sums of n_ego * n_co
+  const int* obj_base;            ///< prefix sums of objects
+  const long long* ego_obj_base;  ///< prefix sums of n_ego * n_obj
+  const int* out_base;            ///< prefix sums of (steps + n_obj + 1) risk outputs
+  const int* co_object_of;        ///< [global CO trajectory]: LOCAL object index
+  const int* co_offset;           ///< [obj_base[p] + o]: object o's first LOCAL CO trajectory
+  const double* co_half_length;   ///< [global CO trajectory]
   const double* co_half_width;
-  const double* ego_half_length;     ///< [p]
+  const double* ego_half_length;  ///< [p]
   const double* ego_half_width;
 };
 
@@ -55,8 +55,10 @@ CRIT_HD int ProblemOf(const T* base, int problems, T index) {
   int lo = 0, hi = problems - 1;
   while (lo < hi) {  // smallest p with base[p + 1] > index
     const int mid = (lo + hi) / 2;
-    if (base[mid + 1] > index) hi = mid;
-    else lo = mid + 1;
+    if (base[mid + 1] > index)
+      hi = mid;
+    else
+      lo = mid + 1;
   }
   return lo;
 }
@@ -136,40 +138,13 @@ CRIT_HD void RiskBody(int g, const BatchLayout& b, const std::int16_t* first, co
   const int steps = b.steps;
   const size_t pairs = static_cast<size_t>(b.pair_base[p]) + static_cast<size_t>(i) * n_co;
   const size_t objs = static_cast<size_t>(b.ego_obj_base[p]) + static_cast<size_t>(i) * n_obj;
-  const std::int16_t* row = first + pairs;
-  int* hist = w.histogram + static_cast<size_t>(g) * (steps + 1);
-  int* ev = w.events + pairs;
-  double* contrib = w.contrib + pairs;
-  double* mass = w.hit_mass + objs;
-  double* step_row = by_step + static_cast<size_t>(g) * steps;
-  double* obj_row = by_object + objs;
-  for (int n = 0; n <= steps; ++n) hist[n] = 0;
-  for (int j = 0; j < n_co; ++j) {
-    if (row[j] > 0) ++hist[row[j]];
-  }
-  int total = 0;
-  for (int n = 1; n <= steps; ++n) {  // counts -> start offsets
-    const int c = hist[n];
-    hist[n] = total;
-    total += c;
-  }
-  for (int j = 0; j < n_co; ++j) {
-    if (row[j] > 0) ev[hist[row[j]]++] = j;
-  }
-  for (int o = 0; o < n_obj; ++o) {
-    mass[o] = 0.0;
-    obj_row[o] = 0.0;
-  }
-  for (int n = 0; n < steps; ++n) step_row[n] = 0.0;
   const int* object_of = b.co_object_of + b.co_base[p];
-  ego_hit[g] = total > 0;
-  ego_col[g] = total > 0 ? core::ChronologicalCollisionProbability(total, ev, p_co + b.co_base[p],
-                                                                   object_of, n_obj, mass, contrib)
-                         : 0.0;
-  for (int e = 0; e < total; ++e) {
-    step_row[row[ev[e]] - 1] += contrib[e];
-    obj_row[object_of[ev[e]]] += contrib[e];
-  }
+  int n_events = 0;
+  ego_col[g] = core::SplitEgoRisk(
+      first + pairs, n_co, steps, n_obj, p_co + b.co_base[p], object_of,
+      w.histogram + static_cast<size_t>(g) * (steps + 1), w.events + pairs, w.contrib + pairs,
+      w.hit_mass + objs, by_step + static_cast<size_t>(g) * steps, by_object + objs, &n_events);
+  ego_hit[g] = n_events > 0;
 }
 
 /** Thread q (a risk output of the batch: per problem its steps, objects, then p_cra): summed
@@ -183,8 +158,8 @@ CRIT_HD void ReduceBody(int q, const BatchLayout& b, const double* p_ego, const 
   double sum = 0.0;
   for (int g = b.ego_base[p]; g < b.ego_base[p + 1]; ++g) {
     if (ego_col[g] == 0.0) continue;
-    const size_t objs = static_cast<size_t>(b.ego_obj_base[p]) +
-                        static_cast<size_t>(g - b.ego_base[p]) * n_obj;
+    const size_t objs =
+        static_cast<size_t>(b.ego_obj_base[p]) + static_cast<size_t>(g - b.ego_base[p]) * n_obj;
     const double v = local < steps           ? by_step[static_cast<size_t>(g) * steps + local]
                      : local < steps + n_obj ? by_object[objs + (local - steps)]
                                              : ego_col[g];

@@ -24,30 +24,16 @@ void AssessRisk(const Problem& pb, const Params& params, const std::int16_t* fir
   std::vector<double> by_step(static_cast<size_t>(n_ego) * steps, 0.0);
   std::vector<double> by_object(static_cast<size_t>(n_ego) * n_obj, 0.0);
   ParallelFor(n_ego, threads, [&](int begin, int end) {
-    std::vector<std::pair<int, int>> events;  // (step, CO trajectory)
-    std::vector<int> order;
-    std::vector<double> hit_mass(n_obj), contribution;
+    std::vector<int> histogram(steps + 1), events(n_co);
+    std::vector<double> contribution(n_co), hit_mass(n_obj);
     for (int i = begin; i < end; ++i) {
-      events.clear();
-      const std::int16_t* row = first_step + static_cast<size_t>(i) * n_co;
-      for (int j = 0; j < n_co; ++j) {
-        if (row[j] > 0) events.emplace_back(row[j], j);
-      }
-      if (events.empty()) continue;
-      ego_hit[i] = 1;
-      std::sort(events.begin(), events.end());  // chronological, ties by CO trajectory
-      order.resize(events.size());
-      contribution.resize(events.size());
-      for (size_t e = 0; e < events.size(); ++e) order[e] = events[e].second;
-      std::fill(hit_mass.begin(), hit_mass.end(), 0.0);
-      ego_col[i] = core::ChronologicalCollisionProbability(
-          static_cast<int>(events.size()), order.data(), pb.co_probability.data(),
-          pb.co_object_of.data(), n_obj, hit_mass.data(), contribution.data());
-      for (size_t e = 0; e < events.size(); ++e) {
-        by_step[static_cast<size_t>(i) * steps + events[e].first - 1] += contribution[e];
-        by_object[static_cast<size_t>(i) * n_obj + pb.co_object_of[events[e].second]] +=
-            contribution[e];
-      }
+      int n_events = 0;
+      ego_col[i] = core::SplitEgoRisk(first_step + static_cast<size_t>(i) * n_co, n_co, steps,
+                                      n_obj, pb.co_probability.data(), pb.co_object_of.data(),
+                                      histogram.data(), events.data(), contribution.data(),
+                                      hit_mass.data(), &by_step[static_cast<size_t>(i) * steps],
+                                      &by_object[static_cast<size_t>(i) * n_obj], &n_events);
+      ego_hit[i] = n_events > 0;
     }
   });
 
