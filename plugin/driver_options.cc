@@ -1,6 +1,7 @@
 #include "plugin/driver_options.h"
 
 #include <boost/program_options.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -58,7 +59,14 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
       "end", po::value(&o.end_time_s)->default_value(-1.0, "when SUMO ends"),
       "stop at this simulated time (s)")(
       "expect", po::value(&expect),
-      "scenario expectation, reported in the summary: collision | no-collision");
+      "scenario expectation, reported in the summary: collision | no-collision")(
+      "expect-partner", po::value(&o.expect_partner),
+      "scenario expectation: ID of the vehicle or person the ego collides with")(
+      "quiet-until", po::value(&o.quiet_until_s)->default_value(0.0),
+      "scenario metadata: end of the quiet phase (s); a warning that starts earlier is a false "
+      "alarm")("category", po::value(&o.category),
+               "scenario metadata for evaluations, e.g. static-object, moving-object, pedestrian, "
+               "junction, cut-in, from-behind, free");
   po::options_description action("Acting on the estimate");
   action.add_options()(
       "act", po::value(&act)->default_value(act),
@@ -154,6 +162,10 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
     throw std::invalid_argument("--expect '" + expect + "': use collision or no-collision");
   }
   o.expect = expect;
+  if (!o.expect_partner.empty() && o.expect != "collision")
+    throw std::invalid_argument("--expect-partner needs --expect collision");
+  if (!std::isfinite(o.quiet_until_s) || o.quiet_until_s < 0.0)
+    throw std::invalid_argument("--quiet-until must be a finite time >= 0 s");
   if (o.sumo_config.empty() && o.connect.empty()) {
     throw std::invalid_argument(
         "no simulation: give -c/--sumo-config FILE (or --connect HOST:PORT)");

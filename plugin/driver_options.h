@@ -33,6 +33,14 @@ struct DriverOptions {
   std::vector<ScenarioEvent> events;
   double end_time_s{-1.0};   ///< stop at this simulated time (<0: when SUMO is done)
   std::string expect;        ///< "", "collision" or "no-collision" (scenario metadata)
+  /** Scenario metadata for tests and evaluations (the driver records them, never acts on them):
+   *  the ID of the vehicle or person the ego is expected to collide with; the end of the
+   *  scenario's quiet phase (s: nothing critical happens before it, so a warning that starts
+   *  earlier is a false alarm); a category such as static-object, moving-object, pedestrian,
+   *  junction, cut-in, from-behind, free. */
+  std::string expect_partner;
+  double quiet_until_s{0.0};
+  std::string category;
   bool progress{true};       ///< progress line on a terminal
   std::string command_line;  ///< for the runs table
 };

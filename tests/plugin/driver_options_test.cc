@@ -79,6 +79,20 @@ TEST(DriverOptions, ConfigFileIsRelativeToItsFolderAndCommandLineWins) {
   EXPECT_EQ(o.options.events.size(), 2u);
 }
 
+TEST(DriverOptions, ScenarioMetadata) {
+  const ParseOutcome o =
+      Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--expect", "collision",
+             "--expect-partner", "obstacle", "--quiet-until", "4.5", "--category", "static-object"});
+  EXPECT_EQ(o.options.expect_partner, "obstacle");
+  EXPECT_EQ(o.options.quiet_until_s, 4.5);
+  EXPECT_EQ(o.options.category, "static-object");
+  // A partner without an expected collision, or a negative quiet phase, is a mistake.
+  EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--expect-partner", "o"}),
+               std::invalid_argument);
+  EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--quiet-until", "-1"}),
+               std::invalid_argument);
+}
+
 TEST(DriverOptions, BadOptionsAreOneLineErrors) {
   EXPECT_THROW(Parse({"--ego", "e", "--output", "x.sqlite"}),
                std::invalid_argument);  // no sumo config
