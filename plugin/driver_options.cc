@@ -65,8 +65,8 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
       "quiet-until", po::value(&o.quiet_until_s)->default_value(0.0),
       "scenario metadata: end of the quiet phase (s); a warning that starts earlier is a false "
       "alarm")("category", po::value(&o.category),
-               "scenario metadata for evaluations, e.g. static-object, moving-object, pedestrian, "
-               "junction, cut-in, from-behind, free");
+               "scenario metadata for evaluations: static-object, moving-object, pedestrian or "
+               "free (collision-free)");
   po::options_description action("Acting on the estimate");
   action.add_options()(
       "act", po::value(&act)->default_value(act),
@@ -112,17 +112,18 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
   try {
     po::store(po::parse_command_line(static_cast<int>(own.size()), own.data(), all), vm);
     if (vm.count("help")) {
-      std::cout << "sumo-criticality: runs SUMO and estimates, every step, each ego's collision "
-                   "probability with the multi-hypothesis algorithm; records steps, warnings, "
-                   "actions and SUMO's collisions in SQLite.\n\n"
-                   "Usage: sumo-criticality -c scenario.sumocfg --ego ego0 --act warn --output "
-                   "run.sqlite [-- SUMO options]\n"
-                   "       sumo-criticality --config scenarios/rear_end/scenario.cfg --output "
-                   "run.sqlite\n"
-                << all
-                << "\nOn exit it prints one JSON summary line. Exit codes: 0 done, 2 bad "
-                   "options or input, 3 SUMO error, 4 results could not be written, 5 ego error (never "
-                   "departed; arrived or teleported while the run goes on).\n";
+      std::cout
+          << "sumo-criticality: runs SUMO and estimates, every step, each ego's collision "
+             "probability with the multi-hypothesis algorithm; records steps, warnings, "
+             "actions and SUMO's collisions in SQLite.\n\n"
+             "Usage: sumo-criticality -c scenario.sumocfg --ego ego0 --act warn --output "
+             "run.sqlite [-- SUMO options]\n"
+             "       sumo-criticality --config scenarios/rear_end/scenario.cfg --output "
+             "run.sqlite\n"
+          << all
+          << "\nOn exit it prints one JSON summary line. Exit codes: 0 done, 2 bad "
+             "options or input, 3 SUMO error, 4 results could not be written, 5 ego error (never "
+             "departed; arrived or teleported while the run goes on).\n";
       out.exit_now = true;
       return out;
     }

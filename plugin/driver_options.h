@@ -36,8 +36,7 @@ struct DriverOptions {
   /** Scenario metadata for tests and evaluations (the driver records them, never acts on them):
    *  the ID of the vehicle or person the ego is expected to collide with; the end of the
    *  scenario's quiet phase (s: nothing critical happens before it, so a warning that starts
-   *  earlier is a false alarm); a category such as static-object, moving-object, pedestrian,
-   *  junction, cut-in, from-behind, free. */
+   *  earlier is a false alarm); a category: static-object, moving-object, pedestrian or free. */
   std::string expect_partner;
   double quiet_until_s{0.0};
   std::string category;
