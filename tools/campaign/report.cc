@@ -179,22 +179,33 @@ std::map<std::size_t, long long> AvoidedByBraking(const std::vector<RunMetrics>&
   return out;
 }
 
+std::string Quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
 std::string FindPython(const std::string& option, std::string& why) {
-  std::vector<std::string> candidates;
-  if (!option.empty()) candidates.push_back(option);
-  if (const char* env = std::getenv("CRIT_PYTHON"); env && *env) candidates.push_back(env);
-  candidates.push_back("/usr/bin/python3");
-  candidates.push_back("python3");
+  // An interpreter named by the user is the only one tried; otherwise Debian's, then PATH's.
+  std::string chosen = option;
+  if (chosen.empty()) {
+    if (const char* env = std::getenv("CRIT_PYTHON"); env && *env) chosen = env;
+  }
+  const std::vector<std::string> candidates =
+      chosen.empty() ? std::vector<std::string>{"/usr/bin/python3", "python3"}
+                     : std::vector<std::string>{chosen};
   bool any = false;
   for (const std::string& py : candidates) {
-    const std::string check = "'" + py + "' -c 'import matplotlib' >/dev/null 2>&1";
-    const std::string exists = "command -v '" + py + "' >/dev/null 2>&1";
-    if (std::system(exists.c_str()) != 0) continue;
+    if (std::system(("command -v " + Quote(py) + " >/dev/null 2>&1").c_str()) != 0) continue;
     any = true;
-    if (std::system(check.c_str()) == 0) return py;
+    if (std::system((Quote(py) + " -c 'import matplotlib' >/dev/null 2>&1").c_str()) == 0)
+      return py;
   }
-  why = any ? "python3 has no matplotlib (install python3-matplotlib: tools/setup.sh)"
-            : "no python3 found (install python3 and python3-matplotlib: tools/setup.sh)";
+  why = !any ? "no python3 found (" + candidates.front() +
+                   "; install python3-matplotlib: tools/setup.sh)"
+        : candidates.size() == 1
+            ? candidates.front() + " cannot import matplotlib (install python3-matplotlib)"
+            : "python3 has no matplotlib (install python3-matplotlib: tools/setup.sh)";
   return "";
 }
 
@@ -217,12 +228,6 @@ std::pair<int, std::string> RunCaptured(const std::string& cmd) {
   const auto nl = text.find_last_of('\n');
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1,
           nl == std::string::npos ? text : text.substr(nl + 1)};
-}
-
-std::string Quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 }  // namespace
