@@ -34,7 +34,7 @@ def overview_figure(out, summary, scenarios):
     series = {k: [totals[s][k] for s in names] for k in next(iter(totals.values()))}
     fig, ax = cp.new_figure(max(6.0, 1.1 * len(names) + 3), 4.0)
     cp.grouped_bars(ax, names, series, "count (all runs)",
-                    "Outcomes per scenario (summed over parameters and seeds)")
+                    "Outcomes per scenario (summed over parameters and seeds)", labels=True)
     return cp.save(fig, os.path.join(out, "overview.png"))
 
 
@@ -42,7 +42,8 @@ def parameter_figure(out, axis, by_param, scenarios):
     """Anticipation, collisions, false alarms and estimator time against one parameter."""
     rows = [r for r in by_param if r["parameter"] == axis["name"]]
     values = axis["values"]
-    curves = ["(all)"] + [s for s in scenarios if any(r["scenario"] == s for r in rows)]
+    present = [s for s in scenarios if any(r["scenario"] == s for r in rows)]
+    curves = (["(all)"] if len(present) > 1 else []) + present
 
     def series(column):
         out_series = {}
@@ -127,7 +128,7 @@ def main(report_dir):
         cp.reliability_diagram(ax, reliability, "Reliability: is p calibrated? "
                                f"(Brier {rel.get('brier', 0):.3f})")
         figures.append((cp.save(fig, os.path.join(report_dir, "reliability.png")),
-                        f"{rel['steps']} estimates before {rel['ego_collisions']} ego collisions, "
+                        f"{rel['steps']} estimates of egos, {rel['ego_collisions']} of which collided, "
                         "binned by p; consecutive steps are correlated."))
 
     blocks = [

@@ -330,7 +330,7 @@ int CmdReport(const std::vector<std::string>& args) {
       "reliability diagram: prediction horizon (s) for runs whose plan does not set --horizon")(
       "min-collisions",
       po::value(&ro.reliability_min_collisions)->default_value(ro.reliability_min_collisions),
-      "fewest ego collisions for a reliability diagram")("no-plots", po::bool_switch(&no_plots),
+      "fewest egos that collided for a reliability diagram")("no-plots", po::bool_switch(&no_plots),
                                                          "tables only")(
       "python", po::value(&ro.python),
       "Python 3 with matplotlib (default: $CRIT_PYTHON, /usr/bin/python3, python3)")(

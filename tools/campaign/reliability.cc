@@ -42,9 +42,9 @@ Reliability ComputeReliability(SqliteDb& db, double default_horizon_s, int min_c
   }
   r.ego_collisions = static_cast<long long>(first.size());
   if (r.ego_collisions < min_collisions) {
-    r.reason = std::to_string(r.ego_collisions) + " ego collision" +
-               (r.ego_collisions == 1 ? "" : "s") + " in successful runs; at least " +
-               std::to_string(min_collisions) + " needed (--min-collisions)";
+    r.reason = std::to_string(r.ego_collisions) + (r.ego_collisions == 1 ? " ego" : " egos") +
+               " collided in successful runs; at least " + std::to_string(min_collisions) +
+               " needed (--min-collisions)";
     return r;
   }
   // Horizon per run: the grid's `horizon`, else --horizon on its command line, else default.

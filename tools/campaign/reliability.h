@@ -16,7 +16,7 @@ struct Reliability {
   Table bins;          ///< p_low, p_high, steps, mean_p, observed_frequency
   long long steps{0};
   long long followed{0};        ///< steps followed by a collision of their ego within the horizon
-  long long ego_collisions{0};  ///< (run, ego) pairs that collided
+  long long ego_collisions{0};  ///< egos that collided: (run, ego) pairs
   double brier{0.0};
 };
 

@@ -427,8 +427,9 @@ ReportResult MakeReport(const CampaignFolder& folder, const ReportOptions& o) {
       md << MarkdownTable(hot.counts, 30) << "\n";
     md << "## Reliability (is p calibrated?)\n\n";
     if (rel.available) {
-      md << rel.steps << " estimates before " << rel.ego_collisions << " ego collisions; "
-         << rel.followed << " were followed by their ego's collision within the horizon. Brier "
+      md << rel.steps << " estimates of egos in successful runs (up to each ego's first "
+         << "collision), " << rel.ego_collisions << " egos collided; " << rel.followed
+         << " estimates were followed by their ego's collision within the horizon. Brier "
          << "score " << Cell(rel.brier, 4)
          << ". Consecutive steps are correlated: read counts as estimates, not independent "
             "trials.\n\n"

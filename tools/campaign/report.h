@@ -19,7 +19,7 @@ struct ReportOptions {
    *  happens within the run's prediction horizon (--horizon; this when the plan does not set
    *  it: the driver's default). */
   double default_horizon_s{2.0};
-  /** Fewest ego collisions for a reliability diagram. */
+  /** Fewest egos that collided (run, ego pairs) for a reliability diagram. */
   int reliability_min_collisions{5};
   bool plots{true};
   std::string python;            ///< interpreter; empty: $CRIT_PYTHON, /usr/bin/python3, python3

@@ -82,8 +82,9 @@ def line_by_category(ax, categories, series, ylabel, title=None, xlabel=None):
         ax.legend(fontsize=7)
 
 
-def grouped_bars(ax, categories, series, ylabel, title=None, stacked=False):
-    """Bars per category, one colour per series ({label: [value per category]})."""
+def grouped_bars(ax, categories, series, ylabel, title=None, stacked=False, labels=False):
+    """Bars per category, one colour per series ({label: [value per category]}); with labels,
+    each bar carries its value."""
     n = max(1, len(series))
     width = 0.8 if stacked else 0.8 / n
     bottom = [0.0] * len(categories)
@@ -95,7 +96,9 @@ def grouped_bars(ax, categories, series, ylabel, title=None, stacked=False):
             bottom = [b + v for b, v in zip(bottom, values)]
         else:
             xs = [i - 0.4 + width * (k + 0.5) for i in range(len(categories))]
-            ax.bar(xs, values, width, label=label)
+            bars = ax.bar(xs, values, width, label=label)
+            if labels:
+                ax.bar_label(bars, labels=[f"{v:g}" for v in values], fontsize=7, padding=1)
     ax.set_xticks(list(range(len(categories))))
     ax.set_xticklabels([str(c) for c in categories], rotation=20, ha="right", fontsize=8)
     ax.set_ylabel(ylabel)
@@ -131,6 +134,8 @@ def reliability_diagram(ax, bins, title="Reliability"):
                width=[(hi - lo) * 0.9 for lo, hi in zip(lows, highs)], alpha=0.15, color="C1")
     counts.set_yscale("log" if max(steps, default=0) > 100 else "linear")
     counts.set_ylabel("estimates per bin", fontsize=8)
+    ax.set_zorder(counts.get_zorder() + 1)  # the curve above the count bars
+    ax.patch.set_visible(False)
 
 
 # --- SUMO networks ------------------------------------------------------------------------

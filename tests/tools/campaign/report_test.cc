@@ -121,7 +121,7 @@ TEST(Report, TablesHoldTheKnownNumbers) {
   EXPECT_TRUE(noted);
   // 4 ego collisions: fewer than the default 5 for a reliability diagram.
   EXPECT_FALSE(std::filesystem::exists(r.dir / "reliability.csv"));
-  EXPECT_NE(ReadFile(r.dir / "summary.md").find("4 ego collisions in successful runs; at least 5"),
+  EXPECT_NE(ReadFile(r.dir / "summary.md").find("4 egos collided in successful runs; at least 5"),
             std::string::npos);
   EXPECT_EQ(r.figures_missing, "--no-plots");
 }
@@ -139,7 +139,9 @@ TEST(Report, ReliabilityCountsStepsBeforeTheCrash) {
   // 4 colliding runs x 9 steps before t = 1.0, 4 braking runs x 10 steps.
   EXPECT_EQ(steps, 76);
   const std::string md = ReadFile(r.dir / "summary.md");
-  EXPECT_NE(md.find("76 estimates before 4 ego collisions; 36 were followed"), std::string::npos)
+  EXPECT_NE(md.find("76 estimates of egos in successful runs (up to each ego's first collision), 4 "
+                    "egos collided; 36 estimates were followed"),
+            std::string::npos)
       << md;
 }
 
