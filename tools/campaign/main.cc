@@ -331,7 +331,7 @@ int CmdReport(const std::vector<std::string>& args) {
       "min-collisions",
       po::value(&ro.reliability_min_collisions)->default_value(ro.reliability_min_collisions),
       "fewest egos that collided for a reliability diagram")("no-plots", po::bool_switch(&no_plots),
-                                                         "tables only")(
+                                                             "tables only")(
       "python", po::value(&ro.python),
       "Python 3 with matplotlib (default: $CRIT_PYTHON, /usr/bin/python3, python3)")(
       "script", po::value(&script), "figure script (default: tools/campaign/campaign_report.py)");

@@ -65,7 +65,8 @@ struct Aggregate {
   long long avoided{0};
   bool has_avoided{false};
 
-  void Add(const RunMetrics& m, std::optional<long long> avoided_here) {
+  void Add(const RunMetrics& m, const std::optional<long long>& avoided_here,
+           const std::optional<long long>& false_alarms_here) {
     ++runs;
     if (!m.ok) {
       ++failed;
@@ -77,7 +78,7 @@ struct Aggregate {
     ego_collisions += m.ego_collisions;
     warned += m.warned_collisions;
     warnings += m.warnings;
-    false_alarms += m.false_alarms;
+    false_alarms += false_alarms_here.value_or(m.false_alarms);
     anticipation.insert(anticipation.end(), m.anticipation_s.begin(), m.anticipation_s.end());
     est_sum += m.estimator_ms_sum;
     if (m.estimator_ms_max) est_max = std::max(est_max.value_or(0.0), *m.estimator_ms_max);
@@ -131,12 +132,18 @@ std::vector<AxisInfo> ReadAxes(const json& info) {
   return axes;
 }
 
-// Collisions avoided by braking: each run with act=brake against the same run (scenario, other
-// parameters, repetition) with act=warn, else act=none: baseline ego collisions minus its own.
-std::map<std::size_t, long long> AvoidedByBraking(const std::vector<RunMetrics>& runs,
-                                                  const std::vector<AxisInfo>& axes, bool available,
-                                                  std::vector<std::string>& notes) {
-  std::map<std::size_t, long long> out;
+// What braking changed: each run with act=brake against the same run (scenario, other
+// parameters, repetition) with act=warn, else act=none. Collisions avoided: the baseline's ego
+// collisions minus its own. False alarms: a warning of an ego that collided in the baseline was
+// a true alarm whose braking worked, so it is not counted.
+struct BrakingEffect {
+  std::map<std::size_t, long long> avoided;
+  std::map<std::size_t, long long> false_alarms;
+};
+
+BrakingEffect CompareBraking(const std::vector<RunMetrics>& runs, const std::vector<AxisInfo>& axes,
+                             bool available, std::vector<std::string>& notes) {
+  BrakingEffect out;
   const auto act = std::find_if(axes.begin(), axes.end(), [](const AxisInfo& a) {
     return a.name == "act" && a.target == "driver";
   });
@@ -172,8 +179,14 @@ std::map<std::size_t, long long> AvoidedByBraking(const std::vector<RunMetrics>&
     const auto& brake = by_act["brake"];
     const auto& base = by_act.count("warn") ? by_act["warn"] : by_act["none"];
     for (std::size_t i = 0; i < brake.size() && i < base.size(); ++i) {
-      if (brake[i]->ok && base[i]->ok)
-        out[brake[i]->run_index] = base[i]->ego_collisions - brake[i]->ego_collisions;
+      if (!brake[i]->ok || !base[i]->ok) continue;
+      const RunMetrics& b = *brake[i];
+      out.avoided[b.run_index] = base[i]->ego_collisions - b.ego_collisions;
+      const std::set<std::string> collided(base[i]->collided_egos.begin(),
+                                           base[i]->collided_egos.end());
+      long long false_alarms = 0;
+      for (const std::string& ego : b.false_alarm_egos) false_alarms += collided.count(ego) ? 0 : 1;
+      out.false_alarms[b.run_index] = false_alarms;
     }
   }
   return out;
@@ -247,11 +260,14 @@ ReportResult MakeReport(const CampaignFolder& folder, const ReportOptions& o) {
   const MetricsAvailability& av = metrics.available;
   std::vector<std::string>& notes = result.notes;
   notes = metrics.notes;
-  const std::map<std::size_t, long long> avoided =
-      AvoidedByBraking(metrics.runs, axes, av.ego_collisions, notes);
-  auto avoided_of = [&](const RunMetrics& m) -> std::optional<long long> {
-    const auto it = avoided.find(m.run_index);
-    return it == avoided.end() ? std::nullopt : std::optional<long long>(it->second);
+  const BrakingEffect braking = CompareBraking(metrics.runs, axes, av.ego_collisions, notes);
+  auto lookup = [](const std::map<std::size_t, long long>& m,
+                   std::size_t run) -> std::optional<long long> {
+    const auto it = m.find(run);
+    return it == m.end() ? std::nullopt : std::optional<long long>(it->second);
+  };
+  auto add = [&](Aggregate& g, const RunMetrics& m) {
+    g.Add(m, lookup(braking.avoided, m.run_index), lookup(braking.false_alarms, m.run_index));
   };
 
   // Scenario order as in the plan.
@@ -286,7 +302,7 @@ ReportResult MakeReport(const CampaignFolder& folder, const ReportOptions& o) {
     }
     auto& g = groups[key];
     if (g.first.empty()) g.first = cells;
-    g.second.Add(m, avoided_of(m));
+    add(g.second, m);
   }
   for (const auto& [key, g] : groups) {
     std::vector<std::string> row = g.first;
@@ -309,17 +325,17 @@ ReportResult MakeReport(const CampaignFolder& folder, const ReportOptions& o) {
         if (it == m.params.end() || it->second != v) continue;
         auto& p = per[scenario_order.count(m.scenario) ? scenario_order[m.scenario] : 9999];
         p.first = m.scenario;
-        p.second.Add(m, avoided_of(m));
-        all.Add(m, avoided_of(m));
+        add(p.second, m);
+        add(all, m);
       }
-      auto add = [&](const std::string& scenario, const Aggregate& g) {
+      auto add_row = [&](const std::string& scenario, const Aggregate& g) {
         std::vector<std::string> row{a.name, v, scenario};
         const auto cells = g.Cells(av);
         row.insert(row.end(), cells.begin(), cells.end());
         by_param.rows.push_back(std::move(row));
       };
-      add("(all)", all);
-      for (const auto& [pos, p] : per) add(p.first, p.second);
+      add_row("(all)", all);
+      for (const auto& [pos, p] : per) add_row(p.first, p.second);
     }
   }
 
@@ -448,7 +464,10 @@ ReportResult MakeReport(const CampaignFolder& folder, const ReportOptions& o) {
           "(the driver's anticipation_s), over warned ego collisions.\n"
        << "- `false_alarms`: warning episodes with no collision of their ego from their start "
           "until "
-       << Cell(o.grace_s, 2) << " s after their end.\n"
+       << Cell(o.grace_s, 2)
+       << " s after their end; in an act=brake run, a warning of an ego that collided in the "
+          "same run with act=warn (or none) is not counted (its braking avoided the "
+          "collision).\n"
        << "- `collisions_avoided`: for act=brake runs, ego collisions of the same run with "
           "act=warn (or none) minus its own.\n"
        << "- `estimator_ms_*`: estimator time per estimate (steps table); `wall_s_mean`: wall "

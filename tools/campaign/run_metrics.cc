@@ -98,6 +98,12 @@ RunMetricsSet LoadRunMetrics(SqliteDb& db, double grace_s) {
       av.anticipation = Has(db, "collisions", {"anticipation_s"});
       each("SELECT c.run_index, count(*) FROM collisions c WHERE " + ego + " GROUP BY c.run_index",
            [](RunMetrics& m, Statement& s) { m.ego_collisions = s.Int(1); });
+      if (MakeRunEgosTable(db)) {
+        each(
+            "SELECT DISTINCT c.run_index, e.ego FROM collisions c JOIN _run_egos e ON "
+            "e.run_index = c.run_index AND e.ego IN (c.collider, c.victim)",
+            [](RunMetrics& m, Statement& s) { m.collided_egos.push_back(s.Text(1)); });
+      }
       if (av.anticipation) {
         each("SELECT c.run_index, c.anticipation_s FROM collisions c WHERE " + ego +
                  " AND c.anticipation_s IS NOT NULL ORDER BY c.run_index, c.time_s",
@@ -125,19 +131,25 @@ RunMetricsSet LoadRunMetrics(SqliteDb& db, double grace_s) {
                       Has(db, "collisions", {"run_index", "time_s", "collider", "victim"});
     if (av.false_alarms) {
       Statement s = db.Prepare(
-          "SELECT w.run_index, count(*) FROM warnings w WHERE NOT EXISTS (SELECT 1 FROM "
+          "SELECT w.run_index, w.ego FROM warnings w WHERE NOT EXISTS (SELECT 1 FROM "
           "collisions c WHERE c.run_index = w.run_index AND w.ego IN (c.collider, c.victim) AND "
           "c.time_s >= w.start_s AND c.time_s <= COALESCE(w.end_s, 1e300) + ?) "
-          "GROUP BY w.run_index");
+          "ORDER BY w.run_index, w.start_s");
       s.Bind(1, grace_s);
       while (s.Step()) {
         const auto it = at.find(static_cast<std::size_t>(s.Int(0)));
-        if (it != at.end()) set.runs[it->second].false_alarms = s.Int(1);
+        if (it == at.end()) continue;
+        ++set.runs[it->second].false_alarms;
+        set.runs[it->second].false_alarm_egos.push_back(s.Text(1));
       }
     } else if (Has(db, "warnings", {"ego", "start_s", "end_s"}) && !av.collisions) {
       // No collisions table at all (no run had one): every warning is a false alarm.
       av.false_alarms = true;
-      for (RunMetrics& m : set.runs) m.false_alarms = m.warnings;
+      each("SELECT run_index, ego FROM warnings ORDER BY run_index, start_s",
+           [](RunMetrics& m, Statement& s) {
+             ++m.false_alarms;
+             m.false_alarm_egos.push_back(s.Text(1));
+           });
     } else {
       set.notes.push_back(
           "false alarms: warnings need ego, start_s, end_s and collisions time_s, collider, "

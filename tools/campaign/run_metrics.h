@@ -3,6 +3,7 @@
 // drivers: each figure says whether it could be computed, and a note says why not.
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,8 @@ struct RunMetrics {
   std::vector<double> anticipation_s;
   long long warnings{0};
   long long false_alarms{0};  ///< warnings with no collision of their ego until end + grace
+  std::vector<std::string> false_alarm_egos;  ///< the ego of each of those warnings
+  std::vector<std::string> collided_egos;     ///< egos with a collision (when egos are known)
 };
 
 /** Which figures the database allows. */

@@ -18,13 +18,14 @@ using testing::TempDir;
 using testing::WriteFile;
 
 // The stand-in collides at t = 1.0 unless it brakes; it warns at 0.6 (until 1.1): a warned
-// run has one ego collision anticipated by 0.4 s, a braking run one false alarm.
-CampaignFolder RunCampaignOf(const TempDir& d, const std::string& driver_extra) {
+// run has one ego collision anticipated by 0.4 s, a braking run none (one avoided).
+CampaignFolder RunCampaignOf(const TempDir& d, const std::string& driver_extra,
+                             bool collide = true) {
   WriteFile(d / "a/scenario.cfg", "sumo-config = x.sumocfg\n");
   WriteFile(d / "b/scenario.cfg", "sumo-config = x.sumocfg\n");
   WriteFile(d / "c.yaml",
-            "output: out\nscenarios: [a/scenario.cfg, b/scenario.cfg]\ndriver:\n"
-            "  stand-in-collide: 1.0\n  stand-in-warn: 0.6\n" +
+            std::string("output: out\nscenarios: [a/scenario.cfg, b/scenario.cfg]\ndriver:\n") +
+                (collide ? "  stand-in-collide: 1.0\n" : "") + "  stand-in-warn: 0.6\n" +
                 driver_extra +
                 "grid:\n  driver:\n    act: [warn, brake]\n  sumo:\n    seed: [1, 2]\n");
   const Plan p(LoadCampaignFile(d / "c.yaml"));
@@ -98,7 +99,8 @@ TEST(Report, TablesHoldTheKnownNumbers) {
   const auto& brake = rows[1];
   EXPECT_EQ(brake.at("act"), "brake");
   EXPECT_EQ(brake.at("collisions"), "0");
-  EXPECT_EQ(brake.at("false_alarms"), "2");
+  // Its warnings are not false alarms: the same run with act=warn collides (braking avoided it).
+  EXPECT_EQ(brake.at("false_alarms"), "0");
   EXPECT_EQ(brake.at("collisions_avoided"), "2");
   EXPECT_EQ(brake.at("anticipation_mean_s"), "");
   EXPECT_EQ(rows[2].at("scenario"), "b");
@@ -124,6 +126,16 @@ TEST(Report, TablesHoldTheKnownNumbers) {
   EXPECT_NE(ReadFile(r.dir / "summary.md").find("4 egos collided in successful runs; at least 5"),
             std::string::npos);
   EXPECT_EQ(r.figures_missing, "--no-plots");
+}
+
+TEST(Report, AWarningWithoutACollisionInEitherRunIsAFalseAlarm) {
+  TempDir d;
+  const ReportResult r = MakeReport(RunCampaignOf(d, "", /*collide=*/false), NoPlots());
+  const auto rows = Csv(r.dir / "summary.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0].at("false_alarms"), "2");  // warn
+  EXPECT_EQ(rows[1].at("false_alarms"), "2");  // brake: nothing to avoid either
+  EXPECT_EQ(rows[1].at("collisions_avoided"), "0");
 }
 
 TEST(Report, ReliabilityCountsStepsBeforeTheCrash) {
