@@ -1,11 +1,6 @@
 #include "tools/campaign/campaign_file.h"
 
-// GCC 12 reports a false -Wdangling-pointer inside yaml-cpp 0.7's node iterators.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpragmas"
-#pragma GCC diagnostic ignored "-Wdangling-pointer"
 #include <yaml-cpp/yaml.h>
-#pragma GCC diagnostic pop
 
 #include <algorithm>
 #include <cctype>
@@ -149,7 +144,7 @@ class Reader {
       FixedOption o;
       o.name = it->first.Scalar();
       o.line = Line(it->first);
-      const YAML::Node& v = it->second;
+      const YAML::Node v = it->second;  // a copy: it-> is a temporary proxy
       if (IsBoolean(v)) {
         o.boolean = true;
         o.values.push_back(BooleanText(v));
@@ -199,7 +194,7 @@ class Reader {
       a.target = target;
       a.name = it->first.Scalar();
       a.line = Line(it->first);
-      const YAML::Node& v = it->second;
+      const YAML::Node v = it->second;  // a copy: it-> is a temporary proxy
       if (v.IsMap()) {
         a.values = Range(v, key);
       } else if (v.IsSequence()) {

@@ -1,13 +1,12 @@
 #include "tools/campaign/driver_locator.h"
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <regex>
 #include <sstream>
 #include <vector>
 
@@ -87,11 +86,21 @@ std::set<std::string> DriverOptionNames(const std::string& driver) {
   std::size_t n = 0;
   while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) text.append(buf.data(), n);
   const int status = pclose(pipe);
+  // Every "--name" that starts a word (or follows '['): Boost.Program_options lists options as
+  // "  --name arg" or "  -c [ --sumo-config ] arg".
   std::set<std::string> names;
-  static const std::regex kOption(R"((?:^|[\s\[])--([A-Za-z0-9][A-Za-z0-9._-]*))");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), kOption);
-       it != std::sregex_iterator(); ++it) {
-    names.insert((*it)[1].str());
+  auto is_name_char = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.' || c == '_';
+  };
+  for (std::size_t i = text.find("--"); i != std::string::npos; i = text.find("--", i + 2)) {
+    const bool starts_word =
+        i == 0 || std::isspace(static_cast<unsigned char>(text[i - 1])) || text[i - 1] == '[';
+    if (!starts_word || i + 2 >= text.size() ||
+        !std::isalnum(static_cast<unsigned char>(text[i + 2])))
+      continue;
+    std::size_t end = i + 2;
+    while (end < text.size() && is_name_char(text[end])) ++end;
+    names.insert(text.substr(i + 2, end - i - 2));
   }
   if (status != 0 || names.empty()) {
     throw CampaignError("'" + driver + " --help' " + (status != 0 ? "failed" : "lists no options") +

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <regex>
 #include <vector>
 
 #include "tools/campaign/run_metrics.h"
@@ -50,7 +49,6 @@ Reliability ComputeReliability(SqliteDb& db, double default_horizon_s, int min_c
   // Horizon per run: the grid's `horizon`, else --horizon on its command line, else default.
   std::map<long long, double> horizon;
   {
-    static const std::regex kHorizon(R"(--horizon[ =]([0-9.eE+-]+))");
     const bool options = HasAll(db, "runs", {"run_index", "options"});
     Statement s = db.Prepare(
         "SELECT r.run_index, (SELECT value FROM plan_params p WHERE p.run_index = r.run_index "
@@ -61,12 +59,13 @@ Reliability ComputeReliability(SqliteDb& db, double default_horizon_s, int min_c
         " FROM campaign_runs r WHERE r.status = 'ok'");
     while (s.Step()) {
       double h = default_horizon_s;
-      std::smatch m;
       const std::string opts = s.IsNull(2) ? "" : s.Text(2);
+      const std::size_t at = opts.rfind("--horizon");  // the last one wins, as on a command line
       if (!s.IsNull(1)) {
         h = std::atof(s.Text(1).c_str());
-      } else if (std::regex_search(opts, m, kHorizon)) {
-        h = std::atof(m[1].str().c_str());
+      } else if (at != std::string::npos && at + 9 < opts.size() &&
+                 (opts[at + 9] == ' ' || opts[at + 9] == '=')) {
+        h = std::atof(opts.c_str() + at + 10);
       }
       horizon[s.Int(0)] = h > 0 ? h : default_horizon_s;
     }

@@ -157,6 +157,16 @@ TEST(Report, ReliabilityCountsStepsBeforeTheCrash) {
       << md;
 }
 
+TEST(Report, ReliabilityUsesEachRunsHorizon) {
+  TempDir d;
+  ReportOptions o = NoPlots();
+  o.reliability_min_collisions = 3;
+  // --horizon 0.5 on every command line: of the 9 steps before t = 1.0, t = 0.5 .. 0.9 count.
+  const ReportResult r = MakeReport(RunCampaignOf(d, "  horizon: 0.5\n"), o);
+  EXPECT_NE(testing::ReadFile(r.dir / "summary.md").find("4 egos collided; 20 estimates were"),
+            std::string::npos);
+}
+
 TEST(Report, NewerRunFilesLocateWarningsAndMissingColumnsAreNoted) {
   TempDir d;
   const CampaignFolder newer = RunCampaignOf(d, "  stand-in-newer: true\n");
