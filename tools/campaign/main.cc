@@ -307,12 +307,21 @@ int CmdMerge(const std::vector<std::string>& args) {
   if (!Parse(args, o, "dir", vm, "Usage: criticality-campaign merge DIR")) return 0;
   const CampaignFolder folder = CampaignFolder::Open(dir);
   const MergeTotals t = MergeCampaign(folder);
+  for (const std::string& u : t.unreadable)
+    std::cerr << "criticality-campaign: warning: " << u << "\n";
   std::cerr << "criticality-campaign: " << t.complete << "/" << t.runs << " runs complete; merged "
             << t.merged << ", unchanged " << t.unchanged << ", removed " << t.removed << " -> "
             << t.database.string() << "\n";
-  json j{{"runs", t.runs},           {"complete", t.complete}, {"merged", t.merged},
-         {"unchanged", t.unchanged}, {"removed", t.removed},   {"incomplete", t.incomplete},
-         {"tables", t.tables},       {"wall_s", t.wall_s},     {"database", t.database.string()}};
+  json j{{"runs", t.runs},
+         {"complete", t.complete},
+         {"merged", t.merged},
+         {"unchanged", t.unchanged},
+         {"removed", t.removed},
+         {"incomplete", t.incomplete},
+         {"tables", t.tables},
+         {"wall_s", t.wall_s},
+         {"database", t.database.string()},
+         {"unreadable", t.unreadable.size()}};
   std::cout << j.dump() << std::endl;
   return kExitOk;
 }
@@ -345,6 +354,8 @@ int CmdReport(const std::vector<std::string>& args) {
   ro.script = script;
   const CampaignFolder folder = CampaignFolder::Open(dir);
   const MergeTotals m = MergeCampaign(folder);
+  for (const std::string& u : m.unreadable)
+    std::cerr << "criticality-campaign: warning: " << u << "\n";
   const ReportResult r = MakeReport(folder, ro);
   for (const std::string& n : r.notes) std::cerr << "criticality-campaign: note: " << n << "\n";
   if (!r.figures_missing.empty())

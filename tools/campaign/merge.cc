@@ -23,7 +23,7 @@ CREATE TABLE IF NOT EXISTS campaign_runs(
   run_index INTEGER PRIMARY KEY, scenario TEXT, scenario_path TEXT, label TEXT,
   repetition INTEGER, status TEXT, exit_code INTEGER, signal INTEGER, error TEXT,
   driver_status TEXT, wall_s REAL, max_rss_kb INTEGER, started_utc TEXT, ended_utc TEXT,
-  host TEXT, attempt TEXT, command TEXT, stderr_tail TEXT, summary TEXT);
+  host TEXT, attempt TEXT, command TEXT, stderr_tail TEXT, summary TEXT, merge_note TEXT);
 CREATE TABLE IF NOT EXISTS plan_params(
   run_index INTEGER NOT NULL, name TEXT NOT NULL, value TEXT, PRIMARY KEY(run_index, name));
 )sql";
@@ -63,6 +63,12 @@ class Merger {
     db_.Exec(kSchema);
     Statement s = db_.Prepare("SELECT run_index, attempt FROM campaign_runs");
     while (s.Step()) merged_[static_cast<std::size_t>(s.Int(0))] = s.Text(1);
+    LoadTables();
+  }
+
+  // The tables holding run rows (with a run_index column) and their columns.
+  void LoadTables() {
+    tables_.clear();
     Statement t = db_.Prepare("SELECT name FROM sqlite_master WHERE type='table'");
     while (t.Step()) {
       const std::string name = t.Text(0);
@@ -119,7 +125,14 @@ class Merger {
         ++t.unchanged;
         continue;
       }
-      MergeRun(i, dir, record);
+      try {
+        MergeRun(i, dir, record);
+      } catch (const CampaignError& e) {
+        // One unreadable run file must not stop the campaign's merge: keep the run's record.
+        const std::string note = std::string("results not merged: ") + e.what();
+        MergeRun(i, dir, record, false, note);
+        t.unreadable.push_back("run " + std::to_string(i) + ": " + note);
+      }
       ++t.merged;
     }
     t.tables = 0;
@@ -136,9 +149,13 @@ class Merger {
     }
   }
 
-  void MergeRun(std::size_t i, const fs::path& dir, const json& r) {
+  // A run's rows in one transaction. Without `with_results` (its file could not be read), only
+  // its campaign_runs row, with `note` saying why.
+  void MergeRun(std::size_t i, const fs::path& dir, const json& r, bool with_results = true,
+                const std::string& note = "") {
     const fs::path results = dir / "run.sqlite";
-    const bool attach = r.contains("results") && r["results"].is_string() && fs::exists(results);
+    const bool attach =
+        with_results && r.contains("results") && r["results"].is_string() && fs::exists(results);
     if (attach) {
       db_.Prepare("ATTACH DATABASE ? AS r").Bind(1, results.string()).Run();
     }
@@ -148,8 +165,8 @@ class Merger {
       Statement run = db_.Prepare(
           "INSERT INTO campaign_runs(run_index, scenario, scenario_path, label, repetition, "
           "status, exit_code, signal, error, driver_status, wall_s, max_rss_kb, started_utc, "
-          "ended_utc, host, attempt, command, stderr_tail, summary) "
-          "VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)");
+          "ended_utc, host, attempt, command, stderr_tail, summary, merge_note) "
+          "VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)");
       run.Bind(1, static_cast<long long>(i));
       int k = 2;
       for (const char* key : {"scenario", "scenario_path", "label", "repetition", "status",
@@ -164,6 +181,10 @@ class Merger {
         run.BindNull(k++);
       else
         run.Bind(k++, JsonText(summary));
+      if (note.empty())
+        run.BindNull(k++);
+      else
+        run.Bind(k++, note);
       run.Run();
       if (r.contains("params") && r["params"].is_object()) {
         Statement p = db_.Prepare("INSERT INTO plan_params(run_index, name, value) VALUES(?,?,?)");
@@ -178,6 +199,7 @@ class Merger {
     } catch (...) {
       sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
       if (attach) sqlite3_exec(db_.handle(), "DETACH DATABASE r", nullptr, nullptr, nullptr);
+      LoadTables();  // tables created in the rolled-back transaction are gone
       throw;
     }
     if (attach) db_.Exec("DETACH DATABASE r");

@@ -10,6 +10,8 @@
 // transaction, so a killed merge leaves a consistent database that the next merge completes.
 // .partial runs are never merged.
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "tools/campaign/campaign_folder.h"
 
@@ -23,6 +25,9 @@ struct MergeTotals {
   std::size_t removed{0};     ///< in the database but no longer complete
   std::size_t incomplete{0};  ///< not (yet) complete: not in the database
   std::size_t tables{0};      ///< run-file tables in the database
+  /** Runs whose results file could not be read: only their campaign_runs row (with
+   *  merge_note) is in the database. */
+  std::vector<std::string> unreadable;
   double wall_s{0.0};
   std::filesystem::path database;
 };

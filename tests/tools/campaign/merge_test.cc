@@ -132,5 +132,22 @@ TEST(Merge, IdempotentIncrementalAndNeverHalfWritten) {
   EXPECT_EQ(Count(db2, "SELECT count(*) FROM campaign_runs"), 5);
 }
 
+TEST(Merge, AnUnreadableRunFileKeepsItsRecordAndTheRestMerges) {
+  TempDir d;
+  const Plan p = MakePlan(d, "  sumo:\n    seed: [1, 2]\n");
+  RunAll(p, d);
+  const CampaignFolder f = CampaignFolder::Open(d / "out");
+  WriteFile(f.RunDir(0) / "run.sqlite", std::string(4096, 'x'));  // not a database
+  const MergeTotals t = MergeCampaign(f);
+  EXPECT_EQ(t.merged, 4u);
+  ASSERT_EQ(t.unreadable.size(), 1u);
+  EXPECT_NE(t.unreadable[0].find("run 0: results not merged"), std::string::npos);
+  SqliteDb db(t.database.string(), false);
+  EXPECT_EQ(Count(db, "SELECT count(*) FROM campaign_runs"), 4);
+  EXPECT_EQ(Count(db, "SELECT count(*) FROM campaign_runs WHERE merge_note IS NOT NULL"), 1);
+  EXPECT_EQ(Count(db, "SELECT count(*) FROM steps WHERE run_index = 0"), 0);
+  EXPECT_EQ(Count(db, "SELECT count(*) FROM steps"), 30);
+}
+
 }  // namespace
 }  // namespace criticality::campaign
