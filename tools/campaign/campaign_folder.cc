@@ -213,8 +213,11 @@ fs::path RunClaim::StartWork() {
 void RunClaim::Complete() {
   const fs::path work = folder_->PartialDir(index_);
   const fs::path done = folder_->RunDir(index_);
+  // The files' data and the folder's entries reach the disk before the rename can: a renamed
+  // (complete) folder is never half-written. Empty files hold nothing to lose. The rename itself
+  // is not synced: if a crash loses it, the .partial folder is simply redone.
   for (const auto& entry : fs::directory_iterator(work)) {
-    if (entry.is_regular_file()) SyncPath(entry.path(), false);
+    if (entry.is_regular_file() && entry.file_size() > 0) SyncPath(entry.path(), false);
   }
   SyncPath(work, true);
   if (fs::exists(done)) {  // redoing a run: move the old result aside first
@@ -226,7 +229,6 @@ void RunClaim::Complete() {
   }
   if (::rename(work.c_str(), done.c_str()) != 0)
     throw CampaignError("cannot complete '" + done.string() + "': " + std::strerror(errno));
-  SyncPath(done.parent_path(), true);
   completed_ = true;
 }
 
