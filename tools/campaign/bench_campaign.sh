@@ -63,10 +63,10 @@ for k in 1 2 3; do
   rm -rf out-pool
   out2=$("$tool" run pool.yaml -j 2 --no-progress 2>/dev/null); t3=$(now)
   awk -v n="$runs" -v a="$t0" -v b="$t1" -v c="$t2" -v d="$t3" -v ok1="$(field ok "$out")" \
-      -v ok2="$(field ok "$out2")" 'BEGIN {
+      -v ok2="$(field ok "$out2")" -v cpu="$(field cpu_s "$out")" 'BEGIN {
     direct = (b - a) / n * 1000; pool1 = (c - b) / n * 1000; pool2 = (d - c) / n * 1000;
-    printf "pool, %d runs: stand-in alone %.2f ms/run; run -j 1 %.2f ms/run (overhead %.2f ms); run -j 2 %.2f ms/run wall; ok %d/%d\n",
-      n, direct, pool1, pool1 - direct, pool2, ok1, ok2 }'
+    printf "pool, %d runs: stand-in alone %.2f ms/run; run -j 1 %.2f ms/run (overhead %.2f ms wall, %.2f ms CPU of the pool); run -j 2 %.2f ms/run wall; ok %d/%d\n",
+      n, direct, pool1, pool1 - direct, cpu / n * 1000, pool2, ok1, ok2 }'
 done
 echo
 

@@ -234,6 +234,7 @@ int CmdRun(const std::vector<std::string>& args) {
          {"interrupted", t.interrupted},
          {"wall_s", t.wall_s},
          {"max_rss_kb", t.max_rss_kb},
+         {"cpu_s", t.cpu_s},
          {"output", plan.spec().output.string()}};
   std::cout << j.dump() << std::endl;
   if (t.stopped_by_signal) return kExitInterrupted;

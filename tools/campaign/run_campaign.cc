@@ -166,6 +166,8 @@ RunTotals RunCampaign(const Plan& plan, const fs::path& out_dir, const RunOption
   rusage self{};
   getrusage(RUSAGE_SELF, &self);
   totals.max_rss_kb = self.ru_maxrss;
+  totals.cpu_s = static_cast<double>(self.ru_utime.tv_sec + self.ru_stime.tv_sec) +
+                 1e-6 * static_cast<double>(self.ru_utime.tv_usec + self.ru_stime.tv_usec);
   return totals;
 }
 

@@ -33,6 +33,7 @@ struct RunTotals {
   bool stopped_by_signal{false};
   double wall_s{0.0};
   long max_rss_kb{0};  ///< of this process
+  double cpu_s{0.0};   ///< user + system CPU time of this process (not of the runs)
 };
 
 /** Runs the plan's runs in `o.first..o.last` in the campaign folder (created or checked).
