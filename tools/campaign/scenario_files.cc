@@ -151,7 +151,17 @@ std::vector<Scenario> ResolveScenarios(const CampaignSpec& spec) {
       // The campaign-wide `egos` is for plain .sumocfg files; a scenario.cfg names its own
       // (an entry's own `egos` adds to them).
       const bool use = e.egos || (egos && s.kind == ScenarioKind::kSumoConfig);
-      if (s.kind == ScenarioKind::kSumoConfig && !use) {
+      // Egos may also come as driver options (`ego`, `all-vehicles: true`, fixed or on the grid).
+      const bool driver_egos =
+          std::any_of(spec.driver_options.begin(), spec.driver_options.end(),
+                      [](const FixedOption& o) {
+                        return o.name == "ego" || (o.name == "all-vehicles" &&
+                                                   o.values == std::vector<std::string>{"true"});
+                      }) ||
+          std::any_of(spec.axes.begin(), spec.axes.end(), [](const Axis& a) {
+            return a.target == Target::kDriver && (a.name == "ego" || a.name == "all-vehicles");
+          });
+      if (s.kind == ScenarioKind::kSumoConfig && !use && !driver_egos) {
         throw CampaignError(Where(spec, e.line, key) + s.rel_path +
                             " is a plain .sumocfg: say which vehicles are egos with `egos:` (all, "
                             "a list of IDs, or {type: VTYPE}) for the campaign or this entry");

@@ -133,6 +133,10 @@ TEST(ScenarioFiles, ErrorsNameTheEntryAndLine) {
                 .find("campaign.yaml:3: scenarios[0]: n/x.sumocfg is a plain "
                       ".sumocfg: say which vehicles are egos"),
             std::string::npos);
+  // Egos given as driver options are enough.
+  EXPECT_NO_THROW(
+      ResolveScenarios(Spec(d, "  - n/x.sumocfg\n", "driver:\n  all-vehicles: true\n")));
+  EXPECT_NO_THROW(ResolveScenarios(Spec(d, "  - n/x.sumocfg\n", "driver:\n  ego: [v0]\n")));
   EXPECT_NE(error("  - missing/*.cfg\n")
                 .find("campaign.yaml:3: scenarios[0]: 'missing/*.cfg' "
                       "matches no file"),
