@@ -55,25 +55,31 @@ ls out-slurm/slurm/logs/task_*_*.out >/dev/null || { echo "FAIL: no task logs" >
 "$tool" merge out-local >/dev/null 2>&1 || { echo "FAIL: merge (local)" >&2; exit 1; }
 
 # Compare every table, leaving out what may differ between two correct executions: timings
-# (*_utc, *_ms, wall_s, heartbeat, per-stage times in the summary), host, attempt, memory.
+# (*_utc, *_ms, *_unix, wall, cpu, heartbeat, memory; in the JSON summaries also per-stage
+# times and rates), host and attempt IDs.
 python3 - out-slurm/campaign.sqlite out-local/campaign.sqlite <<'PY'
-import json, re, sqlite3, sys
-VARYING = re.compile(r"(_utc|_ms|_ms_.*|^wall_s|^heartbeat.*|^host|^attempt|^max_rss_kb)$")
+import json, sqlite3, sys
 
-def varying_key(k):
-    return k != "sim_time_s" and (VARYING.search(k) is not None or "time" in k)
+def varying_column(name):
+    n = name.lower()
+    return (n.endswith(("_utc", "_ms", "_unix")) or "_ms_" in n or "rss" in n
+            or n.startswith(("heartbeat", "wall", "cpu")) or n in ("host", "attempt"))
+
+def varying_key(key):
+    k = key.lower()
+    return varying_column(k) or "per_s" in k or ("time" in k and k != "sim_time_s")
 
 def dump(path):
     db = sqlite3.connect(path)
     out = {}
     for (t,) in db.execute("select name from sqlite_master where type='table' order by name"):
         cols = [c[1] for c in db.execute(f'pragma table_info("{t}")')
-                if not VARYING.search(c[1])]
+                if not varying_column(c[1])]
         rows = []
         sel = ", ".join('"' + c + '"' for c in cols)
         for row in db.execute(f'select {sel} from "{t}"'):
             row = list(row)
-            if t == "campaign_runs" and row[cols.index("summary")]:
+            if "summary" in cols and row[cols.index("summary")]:
                 s = json.loads(row[cols.index("summary")])
                 row[cols.index("summary")] = json.dumps(
                     {k: v for k, v in s.items() if not varying_key(k)}, sort_keys=True)
