@@ -1,0 +1,170 @@
+#!/usr/bin/env bash
+# criticality-campaign from the command line, as a user runs it, with the stand-in driver (no
+# SUMO): one-line errors and exit codes, plan, run -j 2, kill -9 and Ctrl-C in the middle of a
+# campaign then resume, failures, merge, report, and the Slurm script.
+# Usage: campaign_cli_test.sh CRITICALITY_CAMPAIGN STAND_IN_DRIVER WORK_DIR
+set -uo pipefail
+tool=$1 driver=$2 work=$3
+rm -rf "$work" && mkdir -p "$work/a" "$work/b" && cd "$work" || exit 1
+echo "sumo-config = x.sumocfg" >a/scenario.cfg
+echo "sumo-config = x.sumocfg" >b/scenario.cfg
+failures=0
+fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
+check() { "$@" || fail "$*"; }
+# Whether a process works in a folder under $1 (a run's folder; no procps needed).
+running_in() {
+  local d c
+  for d in /proc/[0-9]*; do
+    c=$(readlink "$d/cwd" 2>/dev/null) || continue
+    case "$c" in "$1"*) return 0 ;; esac
+  done
+  return 1
+}
+json_field() { sed -n "s/.*\"$1\":\([^,}]*\).*/\1/p" <<<"$2" | tail -n 1; }
+export SUMO_CRITICALITY_DRIVER=$driver
+
+# --- errors: one line, exit 2 ------------------------------------------------------------
+"$tool" >/dev/null 2>&1; check [ $? = 2 ]
+"$tool" frobnicate >/dev/null 2>err; rc=$?
+check [ $rc = 2 ]; check grep -q "unknown command 'frobnicate'" err
+printf 'output: o\nscenarios: [a/scenario.cfg]\ngrid:\n  driver:\n    profiles: []\n' >bad.yaml
+"$tool" plan bad.yaml >/dev/null 2>err; rc=$?
+check [ $rc = 2 ]
+check [ "$(wc -l <err)" = 1 ]
+check grep -q "bad.yaml:5: grid.driver.profiles: empty grid axis" err
+printf 'output: o\nscenarios: [a/scenario.cfg]\ndriver:\n  profils: 3\n' >bad2.yaml
+"$tool" run bad2.yaml >/dev/null 2>err; rc=$?
+check [ $rc = 2 ]; check grep -q "bad2.yaml:4: driver.profils: sumo-criticality has no option --profils" err
+"$tool" plan missing.yaml >/dev/null 2>err; check [ $? = 2 ]; check grep -q "cannot read" err
+"$tool" merge "$work" >/dev/null 2>err; check [ $? = 2 ]; check grep -q "not a campaign folder" err
+
+# --- plan, run, resume ---------------------------------------------------------------------
+log=$work/executions.log
+cat >c.yaml <<EOF
+name: cli
+output: out
+scenarios: [a/scenario.cfg, b/scenario.cfg]
+driver:
+  stand-in-log: $log
+  stand-in-sleep: 0.4
+  stand-in-collide: 1.0
+  stand-in-warn: 0.6
+grid:
+  driver:
+    act: [warn, brake]
+  sumo:
+    seed: [1, 2, 3]
+slurm:
+  time: "00:05:00"
+  mem: 1G
+  throttle: 3
+  runs_per_task: 2
+EOF
+out=$("$tool" plan c.yaml); rc=$?
+check [ $rc = 0 ]
+check [ "$(json_field runs "$out")" = 12 ]
+check grep -q "run 0: a, act=warn seed=1" <<<"$out"
+"$tool" plan c.yaml --list | grep -c $'^[0-9]' | grep -qx 12 || fail "plan --list lists 12 runs"
+
+# kill -9 the campaign half way: runs in flight die with it (PR_SET_PDEATHSIG) and stay .partial
+"$tool" run c.yaml -j 2 --no-progress >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 100); do
+  [ "$(ls -d out/runs/*[0-9] 2>/dev/null | wc -l)" -ge 2 ] && break
+  sleep 0.05
+done
+kill -9 $pid; wait $pid 2>/dev/null
+sleep 0.3
+partial=$(ls -d out/runs/*.partial 2>/dev/null | wc -l)
+check [ "$partial" -ge 1 ]
+running_in "$work/out/runs/" && fail "runs of a killed campaign keep running"
+done_before_kill=$(ls -d out/runs/*[0-9] | sed 's|.*/||')
+"$tool" merge out >/dev/null 2>&1
+merged=$(sqlite3 out/campaign.sqlite "select count(*) from campaign_runs")
+complete=$(ls -d out/runs/*[0-9] | wc -l)
+check [ "$merged" = "$complete" ]  # never the .partial ones
+check [ "$(sqlite3 out/campaign.sqlite "select count(*) from steps where run_index not in (select run_index from campaign_runs)")" = 0 ]
+
+# Ctrl-C (SIGINT) half way: exit 130, running runs left to redo
+"$tool" run c.yaml -j 2 >run.out 2>run.err &
+pid=$!
+sleep 0.6
+kill -INT $pid; wait $pid; rc=$?
+check [ $rc = 130 ]
+check [ "$(json_field interrupted "$(tail -n 1 run.out)")" -ge 1 ]
+
+# resume: everything completes; each run that completed before ran exactly once
+out=$("$tool" run c.yaml -j 2 2>run.err); rc=$?
+check [ $rc = 0 ]
+check [ "$(json_field remaining "$out")" = 0 ]
+check [ "$(ls -d out/runs/*[0-9] | wc -l)" = 12 ]
+check [ "$(ls -d out/runs/*.partial 2>/dev/null | wc -l)" = 0 ]
+check [ "$(sed 's|.*/||' "$log" | sort -u | wc -l)" = 12 ]
+for r in $done_before_kill; do
+  check [ "$(grep -c "/$r.partial\$" "$log")" = 1 ]  # complete runs are never redone
+done
+out=$("$tool" run c.yaml -j 2 2>/dev/null)
+check [ "$(json_field complete_before "$out")" = 12 ]
+check [ "$(json_field ok "$out")" = 0 ]
+
+# merge: idempotent; report: tables always, figures when matplotlib is there
+out=$("$tool" merge out 2>/dev/null)
+check [ "$(json_field complete "$out")" = 12 ]
+out=$("$tool" merge out 2>/dev/null)
+check [ "$(json_field unchanged "$out")" = 12 ]
+check [ "$(json_field merged "$out")" = 0 ]
+check [ "$(sqlite3 out/campaign.sqlite "select count(*) from steps")" = 120 ]
+check [ "$(sqlite3 out/campaign.sqlite "select count(distinct run_index) from collisions")" = 6 ]
+out=$("$tool" report out 2>report.err); rc=$?
+check [ $rc = 0 ]
+check [ -s out/report/summary.md ]
+check [ -s out/report/summary.csv ]
+check grep -q "| a | warn | 3 | 3 | 0 | 3 | 3 | 3 | 0.4 |" out/report/summary.md
+if /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then
+  check [ "$(json_field figures "$out")" = true ]
+  check [ -s out/report/index.html ]
+  check [ -s out/report/overview.png ]
+  check [ -s out/report/parameter_act.png ]
+  check grep -q 'src="overview.png"' out/report/index.html
+else
+  check grep -q "no figures: " report.err
+fi
+# Without matplotlib (an interpreter that lacks it): tables, and one line saying what is missing.
+printf '#!/bin/sh\nexec /bin/false\n' >nopython && chmod +x nopython
+CRIT_PYTHON=$work/nopython PATH=/nonexistent "$tool" report out --python "$work/nopython" >out.json 2>report.err
+check [ $? = 0 ]
+check grep -q "no figures: " report.err
+check [ -s out/report/summary.md ]
+
+# failures: recorded, the others go on, exit 3
+cat >f.yaml <<EOF
+output: out-fail
+scenarios: [a/scenario.cfg]
+grid:
+  driver:
+    stand-in-exit: [0, 2, 5]
+EOF
+out=$("$tool" run f.yaml -j 2 2>run.err); rc=$?
+check [ $rc = 3 ]
+check [ "$(json_field ok "$out")" = 1 ]
+check [ "$(json_field failed "$out")" = 2 ]
+check grep -q "run 1 (a, stand-in-exit=2) failed: bad input (stand-in)" run.err
+check grep -q "run 2 (a, stand-in-exit=5) failed: exit code 5" run.err
+"$tool" merge out-fail >/dev/null 2>&1
+check [ "$(sqlite3 out-fail/campaign.sqlite "select group_concat(exit_code) from campaign_runs")" = "0,2,5" ]
+
+# slurm: the job-array script (submitted in the slurm test)
+out=$("$tool" slurm c.yaml 2>/dev/null); rc=$?
+check [ $rc = 0 ]
+script=out/slurm/campaign.sbatch
+check grep -q "^#SBATCH --array=0-5%3$" $script
+check grep -q "^#SBATCH --time=00:05:00$" $script
+check grep -q "^#SBATCH --mem=1G$" $script
+check grep -q -- "--runs \"\$first-\$last\" -j 1" $script
+check bash -n $script
+
+if [ $failures -gt 0 ]; then
+  echo "$failures check(s) failed (work folder $work)" >&2
+  exit 1
+fi
+echo "campaign_cli: all checks passed"

@@ -1,0 +1,25 @@
+#pragma once
+// Where on the network warnings and collisions happened (successful runs): counts per edge and
+// per junction (an internal lane `:J_0_1`, crossing or walking area belongs to junction J), and
+// the points for the map (x/y when the run file has them, else lane and position along it, which
+// the figure script places on the lane's shape).
+#include <string>
+#include <vector>
+
+#include "tools/campaign/sqlite_db.h"
+#include "tools/campaign/table_writer.h"
+
+namespace criticality::campaign {
+
+struct Hotspots {
+  Table counts;  ///< scenario, kind (edge | junction), id, warnings, collisions
+  Table points;  ///< scenario, event (warning | collision), run_index, x_m, y_m, lane, pos_m
+  std::vector<std::string> notes;
+};
+
+/** The network element of a lane or edge ID: {"edge", E} or {"junction", J}. */
+std::pair<std::string, std::string> NetworkElement(const std::string& id, bool is_lane);
+
+Hotspots ComputeHotspots(SqliteDb& db);
+
+}  // namespace criticality::campaign
