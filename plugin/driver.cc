@@ -2,22 +2,20 @@
 
 #include <unistd.h>
 
-#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <map>
 #include <memory>
-#include <set>
-#include <sstream>
 
-#include "criticality/estimator.h"
-#include "criticality/scene_io.h"
+#include "plugin/act_stage.h"
+#include "plugin/estimate_stage.h"
+#include "plugin/observe_stage.h"
+#include "plugin/record_stage.h"
 #include "plugin/results_db.h"
+#include "plugin/scene_stage.h"
 #include "plugin/sumo_world.h"
 
 namespace fs = std::filesystem;
@@ -27,13 +25,6 @@ namespace {
 
 std::atomic<bool> g_stop{false};
 extern "C" void OnSignal(int) { g_stop = true; }
-
-struct EgoState {
-  bool warning{false};
-  long long episode{0};
-  double peak{0.0};
-  bool braking{false};
-};
 
 std::string Join(const std::vector<std::string>& v) {
   std::string s;
@@ -75,7 +66,6 @@ void RunDriver(const DriverOptions& o, std::ostream& summary) {
   }
   ResultsDb db(o.output);
   std::unique_ptr<SumoWorld> world;
-  Estimator estimator(o.params, o.estimator);
   std::string status = "completed";
   try {
     world = Open(o);
@@ -88,21 +78,22 @@ void RunDriver(const DriverOptions& o, std::ostream& summary) {
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
 
-  const ExtractionConfig cfg{o.range_m, o.params.horizon_s, o.params.vehicle_accel_max_mps2};
+  // The stages of a step, in the order data flows.
+  ObserveStage observe(o, world.get());
+  SceneStage scenes(o, world.get());
+  EstimateStage estimate(o);
+  ActStage act(o, world.get());
+  RecordStage record(o, &db);
+
   const bool tty = o.progress && isatty(2);
-  std::map<std::string, EgoState> egos;
-  std::set<std::string> seen, arrived, active_pairs;
-  std::vector<bool> applied(o.events.size(), false);
   long long steps = 0, estimates = 0, warnings = 0, actions = 0, collisions = 0;
   double ms_sum = 0.0, ms_max = 0.0, t = 0.0;
   const auto wall0 = std::chrono::steady_clock::now();
   auto last_print = wall0;
+  std::vector<bool> applied(o.events.size(), false);
 
   auto close_all_episodes = [&](double end) {
-    for (auto& [id, s] : egos) {
-      if (s.warning) db.CloseWarning(s.episode, end);
-      s.warning = false;
-    }
+    for (const std::string& ego : act.OpenEpisodes()) record.CloseEpisode(ego, end);
   };
 
   try {
@@ -120,117 +111,28 @@ void RunDriver(const DriverOptions& o, std::ostream& summary) {
       }
       world->Step();
       ++steps;
-      t = world->Time();
-      for (const std::string& id : world->TeleportingIds()) {
-        if (egos.count(id) || (!o.all_vehicles && std::count(o.egos.begin(), o.egos.end(), id))) {
-          throw EgoError("ego '" + id + "' was teleported by SUMO at t = " + std::to_string(t) +
-                         " s (jam or collision with teleport action); its estimates would jump. "
-                         "Use --collision.action warn, or another ego");
-        }
-      }
-      for (const std::string& id : world->ArrivedIds()) {
-        if (egos.count(id)) {
-          if (egos[id].warning) db.CloseWarning(egos[id].episode, t);
-          egos.erase(id);
-        }
-        arrived.insert(id);
-        // A named ego whose route ends while the simulation goes on would silently stop being
-        // estimated: that is a scenario error (an ego arriving with the run's end is fine).
-        const bool named = !o.all_vehicles && std::count(o.egos.begin(), o.egos.end(), id);
-        const bool run_goes_on = world->ExpectedObjects() > 0 && (end < 0.0 || t < end - 1e-9);
-        if (named && run_goes_on) {
-          throw EgoError("ego '" + id + "' arrived (its route ended) at t = " + std::to_string(t) +
-                         " s while the simulation goes on; give it a route that lasts the run, "
-                         "stop the run then with --end, or use --all-vehicles");
-        }
-      }
-      // SUMO reports an overlapping pair at every step (collision.action warn): count events.
-      std::set<std::string> now_pairs;
-      for (const SumoCollision& c : world->Collisions()) {
-        const std::string key = c.collider + "\n" + c.victim;
-        now_pairs.insert(key);
-        if (active_pairs.count(key)) continue;
-        db.AddCollision(CollisionRow{t, c.collider, c.victim, c.collider_type, c.victim_type,
-                                     c.type, c.lane, c.collider_speed, c.victim_speed, c.pos});
-        ++collisions;
-      }
-      active_pairs.swap(now_pairs);
+      const Observation obs = observe.Run();
+      t = obs.time_s;
+      const SceneBatch batch = scenes.Run(obs);
+      const std::vector<Result> results = estimate.Run(batch);
+      const ActOutcome acted = act.Run(batch, results);
+      record.Run(obs, batch, acted);
 
-      const std::vector<std::string> present = world->VehicleIds();
-      std::vector<std::string> current;
-      if (o.all_vehicles) {
-        current = present;
-      } else {
-        for (const std::string& e : o.egos) {
-          if (std::find(present.begin(), present.end(), e) != present.end()) current.push_back(e);
-        }
-      }
-      for (const std::string& ego : current) {
-        seen.insert(ego);
-        EgoState& s = egos[ego];
-        const Scene scene = world->ExtractScene(ego, cfg);
-        const Result r = estimator.Estimate(scene);
-        const double p = r.p_collision;
-        ++estimates;
+      collisions += static_cast<long long>(obs.collisions.size());
+      estimates += static_cast<long long>(results.size());
+      for (const Result& r : results) {
         ms_sum += r.times.total_ms;
         ms_max = std::max(ms_max, r.times.total_ms);
-        if (!o.record_scenes.empty()) {
-          char name[64];
-          std::snprintf(name, sizeof name, "t%010.3f_", t);
-          const fs::path file = fs::path(o.record_scenes) / (name + ego + ".scene");
-          std::ofstream out(file);
-          WriteScene(out, scene);
-          if (!out) throw ResultsError("cannot write scene file '" + file.string() + "'");
-        }
-        if (o.act != Act::kNone) {
-          if (p >= o.warn_threshold && !s.warning) {
-            s.warning = true;
-            s.peak = p;
-            s.episode = db.OpenWarning(ego, t, p);
-            ++warnings;
-          } else if (s.warning && p > s.peak) {
-            s.peak = p;
-            db.UpdateWarningPeak(s.episode, p);
-          } else if (s.warning && p < o.warn_release) {
-            db.CloseWarning(s.episode, t);
-            s.warning = false;
-          }
-          world->Publish(ego, p, s.warning);
-        }
-        const double speed = world->Speed(ego);
-        if (o.act == Act::kBrake) {
-          if (p >= o.brake_threshold) {
-            // Follow the best escape route's acceleration when one exists and it slows down;
-            // otherwise brake as hard as the vehicle can.
-            double accel = -world->EmergencyDecel(ego);
-            if (!r.escape_routes.empty())
-              accel = std::min(r.escape_routes.front().profile_accel_mps2, 0.0);
-            if (accel >= 0.0) accel = -world->EmergencyDecel(ego);
-            const double target = std::max(0.0, speed + accel * dt);
-            world->CommandSpeed(ego, target);
-            if (!s.braking) {
-              db.AddAction(t, ego, "brake", accel, speed, p);
-              ++actions;
-            }
-            s.braking = true;
-          } else if (s.braking) {
-            world->ReleaseSpeed(ego);
-            db.AddAction(t, ego, "release", 0.0, speed, p);
-            ++actions;
-            s.braking = false;
-          }
-        }
-        db.AddStep(t, ego, p, r.times.total_ms, static_cast<int>(r.objects.size()), speed,
-                   s.braking);
       }
-      db.Commit();
+      for (const WarningEvent& w : acted.warnings) warnings += w.change == WarningChange::kOpen;
+      actions += static_cast<long long>(acted.actions.size());
       if (tty) {
         const auto wall = std::chrono::steady_clock::now();
         if (wall - last_print > std::chrono::milliseconds(500)) {
           const double secs = std::chrono::duration<double>(wall - wall0).count();
           std::fprintf(stderr,
                        "\r  t = %.1f s  %.0f steps/s  egos %zu  warnings %lld  collisions %lld   ",
-                       t, steps / std::max(secs, 1e-9), current.size(), warnings, collisions);
+                       t, steps / std::max(secs, 1e-9), batch.egos.size(), warnings, collisions);
           last_print = wall;
         }
       }
@@ -239,7 +141,7 @@ void RunDriver(const DriverOptions& o, std::ostream& summary) {
     if (g_stop) status = "interrupted";
     if (!o.all_vehicles) {
       for (const std::string& e : o.egos) {
-        if (!seen.count(e)) {
+        if (!observe.seen().count(e)) {
           throw EgoError("ego '" + e + "' never departed by t = " + std::to_string(t) +
                          " s: check its ID and depart time in the routes");
         }
@@ -263,9 +165,9 @@ void RunDriver(const DriverOptions& o, std::ostream& summary) {
   if (o.expect == "collision") expectation = collisions > 0 ? "true" : "false";
   if (o.expect == "no-collision") expectation = collisions == 0 ? "true" : "false";
   summary << "{\"status\":" << JsonString(status) << ",\"sim_time_s\":" << t
-          << ",\"steps\":" << steps << ",\"egos\":" << seen.size() << ",\"estimates\":" << estimates
-          << ",\"warnings\":" << warnings << ",\"actions\":" << actions
-          << ",\"collisions\":" << collisions
+          << ",\"steps\":" << steps << ",\"egos\":" << observe.seen().size()
+          << ",\"estimates\":" << estimates << ",\"warnings\":" << warnings
+          << ",\"actions\":" << actions << ",\"collisions\":" << collisions
           << ",\"estimator_ms_mean\":" << (estimates ? ms_sum / estimates : 0.0)
           << ",\"estimator_ms_max\":" << ms_max << ",\"expectation_met\":" << expectation
           << ",\"output\":" << JsonString(db.path()) << "}\n";
