@@ -15,9 +15,16 @@ namespace criticality::plugin {
 class RecordStage {
  public:
   RecordStage(const DriverOptions& options, ResultsDb* db);
+  /** Writes the step's rows; Commit() ends the step. */
   void Run(const Observation& obs, const SceneBatch& batch, const ActOutcome& acted);
-  /** Ends the open warning episode of `ego` at `time_s` (it left, or the run ends). */
+  /** The step's time breakdown (written last, with the time the writing took so far). */
+  void Commit(const StepTimeRow& times);
+  /** Ends the open warning episode of `ego` at `time_s` (the run ends). */
   void CloseEpisode(const std::string& ego, double time_s);
+
+  /** File name of a recorded scene: t<time>_<ego>.scene, the ego ID made safe for a file name
+   *  ('/' and other unsafe bytes written as %XX). */
+  static std::string SceneFileName(double time_s, const std::string& ego);
 
  private:
   const DriverOptions& options_;

@@ -80,9 +80,9 @@ TEST(DriverOptions, ConfigFileIsRelativeToItsFolderAndCommandLineWins) {
 }
 
 TEST(DriverOptions, ScenarioMetadata) {
-  const ParseOutcome o =
-      Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--expect", "collision",
-             "--expect-partner", "obstacle", "--quiet-until", "4.5", "--category", "static-object"});
+  const ParseOutcome o = Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--expect",
+                                "collision", "--expect-partner", "obstacle", "--quiet-until", "4.5",
+                                "--category", "static-object"});
   EXPECT_EQ(o.options.expect_partner, "obstacle");
   EXPECT_EQ(o.options.quiet_until_s, 4.5);
   EXPECT_EQ(o.options.category, "static-object");

@@ -83,7 +83,8 @@ TEST(LaneCorridor, DividersThatCrossInATightTurnAreLeftOut) {
     for (int i = 0; i < 3; ++i) EXPECT_GT(set.own->left.points[i].y, set.own->right.points[i].y);
   }
   if (set.right) {
-    for (int i = 0; i < 3; ++i) EXPECT_GT(set.right->left.points[i].y, set.right->right.points[i].y);
+    for (int i = 0; i < 3; ++i)
+      EXPECT_GT(set.right->left.points[i].y, set.right->right.points[i].y);
   }
 }
 
