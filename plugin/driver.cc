@@ -48,6 +48,16 @@ double Seconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double>(d).count();
 }
 
+// Resident memory now, from /proc (0 where there is none).
+double RssMb() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0.0;
+  long pages = 0, resident = 0;
+  const int n = std::fscanf(f, "%ld %ld", &pages, &resident);
+  std::fclose(f);
+  return n == 2 ? resident * (sysconf(_SC_PAGESIZE) / 1048576.0) : 0.0;
+}
+
 double MaxRssMb() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -172,7 +182,8 @@ int RunDriver(const DriverOptions& o, RunSummary* summary) {
     const bool end_option = o.end_time_s >= 0.0 && (sumo_end < 0.0 || o.end_time_s < sumo_end);
     if (end_option) end = o.end_time_s;
     const bool tty = o.progress && isatty(2);
-    auto last_print = wall0;
+    auto last_print = wall0, last_rss = wall0;
+    double rss_mb = 0.0;
     using Clock = std::chrono::steady_clock;
     while (true) {
       const double next = world->Time();
@@ -214,6 +225,11 @@ int RunDriver(const DriverOptions& o, RunSummary* summary) {
       times.estimates = static_cast<int>(acted.steps.size());
       for (const EgoStep& s : acted.steps) times.shortcut_estimates += s.shortcut ? 1 : 0;
       times.record_ms = 1e3 * Seconds(Clock::now() - t5);
+      if (Seconds(t5 - last_rss) >= 2.0 || sum.steps == 0) {
+        rss_mb = RssMb();
+        last_rss = t5;
+      }
+      times.rss_mb = rss_mb;
       record->Commit(times);
       auto t6 = Clock::now();
 

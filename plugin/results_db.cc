@@ -36,7 +36,7 @@ CREATE TABLE ego_events(
 CREATE TABLE step_times(
   run_id INTEGER NOT NULL REFERENCES runs(id), time_s REAL NOT NULL, estimates INTEGER NOT NULL,
   shortcut_estimates INTEGER NOT NULL, sumo_ms REAL, observe_ms REAL, scenes_ms REAL,
-  estimate_ms REAL, act_ms REAL, record_ms REAL);
+  estimate_ms REAL, act_ms REAL, record_ms REAL, rss_mb REAL);
 CREATE INDEX steps_by_ego ON steps(run_id, ego, time_s);
 )sql";
 
@@ -93,7 +93,7 @@ ResultsDb::ResultsDb(const std::string& path) : path_(path) {
         "(SELECT ?2 - start_s FROM warnings WHERE run_id=?1 AND ego IN (?3, ?4) AND start_s <= ?2 "
         "AND (end_s IS NULL OR end_s >= ?2 - ?15) ORDER BY start_s DESC LIMIT 1))");
     ego_event_ = Prepare("INSERT INTO ego_events VALUES(?,?,?,?,?)");
-    step_time_ = Prepare("INSERT INTO step_times VALUES(?,?,?,?,?,?,?,?,?,?)");
+    step_time_ = Prepare("INSERT INTO step_times VALUES(?,?,?,?,?,?,?,?,?,?,?)");
     heartbeat_ = Prepare("UPDATE runs SET heartbeat_unix=? WHERE id=?");
   } catch (...) {
     Discard();  // a half-made file is no result
@@ -260,6 +260,7 @@ void ResultsDb::AddStepTime(const StepTimeRow& t) {
   sqlite3_bind_double(s, 8, t.estimate_ms);
   sqlite3_bind_double(s, 9, t.act_ms);
   sqlite3_bind_double(s, 10, t.record_ms);
+  sqlite3_bind_double(s, 11, t.rss_mb);
   Step(s, "step time");
 }
 

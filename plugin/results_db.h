@@ -43,6 +43,7 @@ struct StepTimeRow {
   int shortcut_estimates{0};
   double sumo_ms{0.0}, observe_ms{0.0}, scenes_ms{0.0}, estimate_ms{0.0}, act_ms{0.0},
       record_ms{0.0};
+  double rss_mb{0.0};  ///< the process's resident memory (sampled every few seconds)
 };
 
 class ResultsDb {

@@ -443,6 +443,64 @@ PY
     check "two cars passing head-on on the two-way street: no warning" \
       test "$(q "$db" "select count(*) from warnings where ego like 'pass_%' and start_s < 15")" -eq 0
     ;;
+  city_one_ego|city_sublane_all)
+    # The city-like network (bench/city: 1,500 randomTrips cars, 600 pedestrians, traffic
+    # lights, sidewalks): one ego with the full hypothesis set until it arrives; or, with the
+    # sublane model and 0.25 s steps, every vehicle an ego over the first 120 s (cheaper
+    # hypothesis settings). SUMO's own collision output is the reference.
+    city=$here/../../bench/city
+    db=$work/$case.sqlite; rm -f "$db"
+    if [ $case = city_one_ego ]; then
+      summary=$("$driver" --no-progress -c "$city/city.sumocfg" --ego car22 --output "$db" \
+                  -- --collision-output "$work/$case.collisions.xml"); rc=$?
+      check "city, one ego: ends when it arrives" test "$(summary_field "$summary" end_reason)" = egos-arrived
+      check "city, one ego: depart and arrive recorded" \
+        test "$(q "$db" "select group_concat(event) from (select event from ego_events order by time_s)")" = "depart,arrive"
+    else
+      summary=$("$driver" --no-progress -c "$city/city.sumocfg" --all-vehicles --output "$db" \
+                  --profiles 3 --own-lane-samples 1 --neighbour-lane-samples 1 \
+                  -- --step-length 0.25 --lateral-resolution 0.3 --end 120 \
+                  --collision-output "$work/$case.collisions.xml"); rc=$?
+      check "city, sublane, 0.25 s: every step stamped on the 0.25 s grid" \
+        test "$(q "$db" "select count(*) from step_times where abs(time_s * 4 - round(time_s * 4)) > 1e-6")" -eq 0
+      check "city, sublane, 0.25 s: hundreds of egos" test "$(summary_field "$summary" egos)" -ge 200
+      check "city, sublane: the shortcut answered some estimates" \
+        test "$(summary_field "$summary" shortcut_estimates)" -ge 1
+    fi
+    echo "$summary"
+    check "city ($case): exit 0" test $rc -eq 0
+    check "city ($case): one time breakdown per step" \
+      test "$(q "$db" "select count(*) from step_times")" -eq "$(summary_field "$summary" steps)"
+    check "city ($case): the same collisions as SUMO's collision output, with its time stamps" python3 - "$db" "$work/$case.collisions.xml" <<'PY'
+import re, sqlite3, sys
+db, xml = sys.argv[1], sys.argv[2]
+ours = sorted(sqlite3.connect(db).execute("select printf('%.2f', time_s), collider, victim from collisions"))
+theirs, seen = [], set()
+for line in open(xml):
+    m = re.search(r'<collision time="([0-9.]+)".* collider="([^"]+)" victim="([^"]+)"', line)
+    if m:
+        key = (m.group(2), m.group(3))
+        t = float(m.group(1))
+        if key in seen and any(abs(t - tt) < 0.3 for tt in seen_t.get(key, [])):
+            seen_t[key].append(t); continue  # the same contact, reported again
+        seen.add(key); seen_t = globals().setdefault('seen_t', {}); seen_t.setdefault(key, []).append(t)
+        theirs.append(('%.2f' % t, m.group(2), m.group(3)))
+theirs.sort()
+print(len(ours), 'collisions recorded,', len(theirs), 'in SUMO\'s output')
+if ours != theirs: print('ours  ', ours[:10]); print('theirs', theirs[:10])
+sys.exit(0 if ours == theirs else 1)
+PY
+    # Memory flat in simulated time: the resident memory of the second half of the run stays
+    # within 15 MB of the first half's.
+    check "city ($case): memory flat" python3 - "$db" <<'PY'
+import sqlite3, sys
+rows = sqlite3.connect(sys.argv[1]).execute("select time_s, rss_mb from step_times order by time_s").fetchall()
+half = len(rows) // 2
+first = max(r[1] for r in rows[len(rows) // 10:half]); second = max(r[1] for r in rows[half:])
+print(f'resident memory: first half up to {first:.1f} MB, second half up to {second:.1f} MB')
+sys.exit(0 if second <= first + 15.0 else 1)
+PY
+    ;;
   *) echo "unknown case $case"; exit 2 ;;
 esac
 exit $fail
