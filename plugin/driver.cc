@@ -64,6 +64,12 @@ double MaxRssMb() {
   return u.ru_maxrss / 1024.0;  // KiB on Linux
 }
 
+double CpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 std::unique_ptr<SumoWorld> Open(const DriverOptions& o) {
   if (!o.connect.empty()) {
     const auto colon = o.connect.rfind(':');  // validated by ParseDriverOptions
@@ -138,6 +144,7 @@ int RunDriver(const DriverOptions& o, RunSummary* summary) {
     sum.sim_time_s = t;
     sum.wall_s = Seconds(std::chrono::steady_clock::now() - wall0);
     sum.max_rss_mb = MaxRssMb();
+    sum.cpu_s = CpuSeconds();
     if (!db) return;
     if (!stepped) {  // nothing worth keeping: leave no file to delete
       db->Discard();

@@ -12,6 +12,13 @@ EstimateStage::EstimateStage(const DriverOptions& o) {
   const int threads = whole_->threads();
   spread_ = whole_->options().backend != Backend::kCuda && threads > 1;
   if (!spread_) return;
+  // Ego hypothesis steps (with all three lanes): below ~50,000 an estimate takes well under a
+  // millisecond on one thread, and starting threads for it costs more than it saves.
+  const Params& p = o.params;
+  double ego_steps = p.profiles * static_cast<double>(p.TimeSteps());
+  for (size_t k = 0; k < p.path_sample_times_s.size(); ++k)
+    ego_steps *= p.LateralSamplesThreeLanes();
+  small_ = ego_steps < 5e4;
   EstimatorOptions one = whole_->options();
   one.threads = 1;
   for (int k = 0; k < threads; ++k) single_.push_back(std::make_unique<Estimator>(o.params, one));
@@ -67,7 +74,11 @@ void EstimateStage::Work(int worker) {
 }
 
 std::vector<Result> EstimateStage::Run(const SceneBatch& batch) {
-  if (!spread_ || batch.scenes.size() <= 1) return whole_->EstimateBatch(batch.scenes);
+  if (!spread_) return whole_->EstimateBatch(batch.scenes);
+  if (batch.scenes.size() == 1) {
+    // One scene: every thread on it, unless it is too small to pay for starting threads.
+    return (small_ ? single_.front() : whole_)->EstimateBatch(batch.scenes);
+  }
   std::vector<Result> results(batch.scenes.size());
   {
     std::lock_guard<std::mutex> lock(mutex_);

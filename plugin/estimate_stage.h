@@ -3,7 +3,8 @@
 // (Estimator::EstimateBatch). On the GPU the batch is one call (one set of launches); on the
 // CPU it is spread over --threads worker threads, each with its own single-threaded estimator,
 // taking small chunks of the batch in turn (a batch of one scene uses one estimator with every
-// thread instead). Results do not depend on the split: each estimate is deterministic.
+// thread instead, unless the hypothesis set is small). Results do not depend on the split: each
+// estimate is deterministic.
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -31,6 +32,7 @@ class EstimateStage {
 
   std::unique_ptr<Estimator> whole_;  ///< every thread on one estimate (or the GPU batch)
   bool spread_{false};                ///< CPU: spread batches over workers
+  bool small_{false};                 ///< estimates too small to split over threads
   std::vector<std::unique_ptr<Estimator>> single_;  ///< one single-threaded estimator per worker
   std::vector<std::thread> pool_;
   std::mutex mutex_;

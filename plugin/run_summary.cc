@@ -50,7 +50,8 @@ std::string SummaryJson(const RunSummary& s) {
     << ",\"time_s\":{\"sumo\":" << Num(s.times.sumo_s) << ",\"observe\":" << Num(s.times.observe_s)
     << ",\"scenes\":" << Num(s.times.scenes_s) << ",\"estimate\":" << Num(s.times.estimate_s)
     << ",\"act\":" << Num(s.times.act_s) << ",\"record\":" << Num(s.times.record_s) << "}"
-    << ",\"wall_s\":" << Num(s.wall_s) << ",\"estimates_per_s\":" << Num(rate)
+    << ",\"wall_s\":" << Num(s.wall_s) << ",\"cpu_s\":" << Num(s.cpu_s)
+    << ",\"estimates_per_s\":" << Num(rate)
     << ",\"estimator_ms_mean\":" << Num(s.estimates ? s.estimator_ms_sum / s.estimates : 0.0)
     << ",\"estimator_ms_max\":" << Num(s.estimator_ms_max)
     << ",\"max_rss_mb\":" << Num(s.max_rss_mb) << ",\"expectation_met\":"

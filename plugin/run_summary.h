@@ -35,6 +35,7 @@ struct RunSummary {
   long long ego_events{0};
   StageTimes times;
   double wall_s{0.0};
+  double cpu_s{0.0};  ///< user + system CPU time of the process, every thread
   double estimator_ms_sum{0.0};
   double estimator_ms_max{0.0};
   double max_rss_mb{0.0};
