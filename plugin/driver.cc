@@ -146,7 +146,7 @@ int RunDriver(const DriverOptions& o, RunSummary* summary) {
     sum.max_rss_mb = MaxRssMb();
     sum.cpu_s = CpuSeconds();
     if (!db) return;
-    if (!stepped) {  // nothing worth keeping: leave no file to delete
+    if (!stepped && status != "completed") {  // failed before its first step: leave no file
       db->Discard();
       sum.output.clear();
       return;

@@ -443,6 +443,26 @@ PY
     check "two cars passing head-on on the two-way street: no warning" \
       test "$(q "$db" "select count(*) from warnings where ego like 'pass_%' and start_s < 15")" -eq 0
     ;;
+  riding_person)
+    # A person riding in a vehicle is not a pedestrian (SUMO reports them at the vehicle's
+    # place): in scenes only while waiting to be picked up. FCD output says when they ride.
+    db=$work/ride.sqlite scenes=$work/ride_scenes; rm -rf "$db" "$scenes"
+    "$driver" --no-progress -c "$data/riding/ride.sumocfg" --ego ego --output "$db" \
+      --record-scenes "$scenes" -- --fcd-output "$work/ride_fcd.xml" >/dev/null; rc=$?
+    check "riding person: exit 0" test $rc -eq 0
+    boarded=$(python3 -c "
+import re
+t = None
+for line in open('$work/ride_fcd.xml'):
+    m = re.search(r'<timestep time=\"([0-9.]+)\"', line)
+    if m: t = float(m.group(1))
+    if 'person id=\"rider\"' in line and float(re.search(r' speed=\"([0-9.]+)\"', line).group(1)) > 1.0:
+        print(t); break")
+    last=$(grep -l "^pedestrian rider " "$scenes"/* | tail -n 1 | sed -e 's/.*_\?t\([0-9.]*\)_ego.scene/\1/' -e 's/^0*//')
+    echo "   rider moves with the taxi from $boarded s; last scene with the rider as a pedestrian: $last s"
+    check "riding person: a pedestrian while waiting" test -n "$last"
+    check "riding person: never a pedestrian once riding" python3 -c "import sys; sys.exit(0 if float('$last') < float('$boarded') else 1)"
+    ;;
   city_one_ego|city_sublane_all)
     # The city-like network (bench/city: 1,500 randomTrips cars, 600 pedestrians, traffic
     # lights, sidewalks): one ego with the full hypothesis set until it arrives; or, with the
