@@ -168,6 +168,7 @@ int RunDriver(const DriverOptions& o, RunSummary* summary) {
     world = Open(o);
     const double dt = world->StepLength();
     db->BeginRun(o.command_line, world->Version(), o.all_vehicles ? "*" : Join(o.egos), dt);
+    db->SetScenario(o.expect, o.expect_partner, o.quiet_until_s, o.category);
 
     ExtractionConfig cfg;
     cfg.range_m = o.range_m;

@@ -14,7 +14,8 @@ constexpr const char* kSchema = R"sql(
 CREATE TABLE runs(
   id INTEGER PRIMARY KEY, started_utc TEXT NOT NULL, ended_utc TEXT, status TEXT NOT NULL,
   end_reason TEXT, error TEXT, heartbeat_unix REAL, step_length_s REAL, sumo_version TEXT,
-  egos TEXT, options TEXT, summary TEXT);
+  egos TEXT, options TEXT, expect TEXT, expect_partner TEXT, quiet_until_s REAL,
+  category TEXT, summary TEXT);
 CREATE TABLE steps(
   run_id INTEGER NOT NULL REFERENCES runs(id), time_s REAL NOT NULL, ego TEXT NOT NULL,
   p_collision REAL NOT NULL, estimator_ms REAL NOT NULL, objects INTEGER NOT NULL,
@@ -168,6 +169,21 @@ void ResultsDb::BeginRun(const std::string& options, const std::string& sumo_ver
   Exec("BEGIN");
 }
 
+void ResultsDb::SetScenario(const std::string& expect, const std::string& expect_partner,
+                            double quiet_until_s, const std::string& category) {
+  sqlite3_stmt* s = Prepare(
+      "UPDATE runs SET expect=NULLIF(?,''), expect_partner=NULLIF(?,''), quiet_until_s=?, "
+      "category=NULLIF(?,'') WHERE id=?");
+  sqlite3_bind_text(s, 1, expect.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(s, 2, expect_partner.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_double(s, 3, quiet_until_s);
+  sqlite3_bind_text(s, 4, category.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_int64(s, 5, run_id_);
+  const int rc = sqlite3_step(s);
+  sqlite3_finalize(s);
+  if (rc != SQLITE_DONE) Fail("scenario");
+}
+
 void ResultsDb::AddStep(const StepRow& r) {
   sqlite3_bind_int64(step_, 1, run_id_);
   sqlite3_bind_double(step_, 2, r.time_s);
@@ -297,11 +313,6 @@ void ResultsDb::EndRun(const std::string& status, const std::string& end_reason,
   sqlite3_finalize(s);
   if (rc != SQLITE_DONE) Fail("run end");
   Exec("COMMIT");
-  // A finished run is one plain file; when a reader holds the database right now it stays in
-  // WAL mode, which every SQLite reader handles too.
-  sqlite3_busy_timeout(db_, 200);
-  sqlite3_exec(db_, "PRAGMA journal_mode=DELETE", nullptr, nullptr, nullptr);
-  sqlite3_busy_timeout(db_, 5000);
   Exec("BEGIN");
 }
 

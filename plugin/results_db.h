@@ -56,6 +56,10 @@ class ResultsDb {
 
   void BeginRun(const std::string& options, const std::string& sumo_version,
                 const std::string& egos, double step_length_s);
+  /** The scenario's metadata (--expect, --expect-partner, --quiet-until, --category), recorded
+   *  for evaluations; empty strings are stored as NULL. */
+  void SetScenario(const std::string& expect, const std::string& expect_partner,
+                   double quiet_until_s, const std::string& category);
   void AddStep(const StepRow& s);
   /** Opens a warning episode where the ego is; returns its row id. */
   long long OpenWarning(const std::string& ego, double start_s, double p_collision, double x_m,
@@ -75,8 +79,8 @@ class ResultsDb {
    *  second) and opens the next transaction. */
   void Commit();
   /** Final status (completed, interrupted, failed), why the run ended, the error (empty: none)
-   *  and the JSON summary; commits and leaves a single file (journal mode back to DELETE when
-   *  no reader holds it). */
+   *  and the JSON summary; commits. The file stays in WAL mode (switching back would lock out
+   *  the readers of that moment); closing it folds the WAL into the file. */
   void EndRun(const std::string& status, const std::string& end_reason, const std::string& error,
               const std::string& summary_json);
   /** Closes and deletes the file: a run that failed before its first step leaves nothing. */

@@ -40,12 +40,18 @@ struct ReachShortcut {
     none_left = kept.cos.empty();
     return kept;
   }
-  // Answers a problem with no object left: the risk assessment of an empty pair matrix, which
-  // is what the backend would compute after generating every ego trajectory.
-  static void Answer(const internal::Problem& kept, const Params& params, int threads,
-                     Result* result) {
-    const std::vector<std::int16_t> no_pairs;
-    internal::AssessRisk(kept, params, no_pairs.data(), threads, result);
+  // Answers a problem with no object left as the risk assessment of an empty pair matrix
+  // does, after the backend generated every ego trajectory: nothing collides, every ego
+  // hypothesis is an escape route candidate (tests/estimator/reach_filter_test.cc compares
+  // every field with the full estimate).
+  static void Answer(const internal::Problem& kept, const Params& params, Result* result) {
+    const int n_ego = kept.EgoTrajectories();
+    result->p_collision = 0.0;
+    result->first_collision_pmf.assign(kept.Steps(), 0.0);
+    result->objects = kept.objects;
+    result->ego_probability = kept.ego_probability;
+    result->ego_collision_probability.assign(n_ego, 0.0);
+    internal::FillEscapeRoutes(kept, params, std::vector<char>(n_ego, 0), result);
   }
   void Restore(const internal::Problem& pb, Result* result) const {
     if (!any) return;
@@ -174,7 +180,7 @@ Result Estimator::Estimate(const Scene& scene) {
   result.times.street_ms = MsSince(t0);
 
   if (shortcut.none_left) {
-    ReachShortcut::Answer(problem, params_, backend_->Threads(), &result);
+    ReachShortcut::Answer(problem, params_, &result);
   } else {
     backend_->Run(problem, params_, options_.keep_pair_matrix, &result);
   }
@@ -200,7 +206,7 @@ std::vector<Result> Estimator::EstimateBatch(const std::vector<Scene>& scenes) {
   std::vector<size_t> run;  // the problems the backend runs
   for (size_t k = 0; k < problems.size(); ++k) {
     if (shortcuts[k].none_left) {
-      ReachShortcut::Answer(problems[k], params_, backend_->Threads(), &results[k]);
+      ReachShortcut::Answer(problems[k], params_, &results[k]);
     } else {
       views.push_back(&problems[k]);
       run.push_back(k);

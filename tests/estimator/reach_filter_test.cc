@@ -220,25 +220,44 @@ TEST(ReachFilter, ShortcutGivesTheFullEstimateAtTheEdgeOfReach) {
               dropped, kept_colliding, kept_clear, answered_without_trajectories);
 }
 
-TEST(ReachFilter, AnEmptySceneIsAnsweredWithoutTrajectoriesAndMatchesTheFullEstimate) {
-  Scene scene;
-  scene.ego.state.speed_mps = 12.0;
-  scene.ego.lanes = bench::StraightThreeLanes();
+TEST(ReachFilter, AnEgoWithNoObjectInReachIsAnsweredWithoutTrajectories) {
+  // One vehicle 500 m away (the full estimate simulates and checks it), and the same ego alone.
+  Scene far;
+  far.ego.state.speed_mps = 12.0;
+  far.ego.lanes = bench::StraightThreeLanes();
+  Vehicle v;
+  v.id = "far";
+  v.state.x_m = 500.0;
+  v.state.speed_mps = 12.0;
+  far.vehicles.push_back(v);
+  Scene alone = far;
+  alone.vehicles.clear();
   EstimatorOptions full_opt, cut_opt;
   cut_opt.reach_shortcut = true;
   Estimator full(Params{}, full_opt), cut(Params{}, cut_opt);
-  const Result a = full.Estimate(scene);
-  const Result b = cut.Estimate(scene);
-  EXPECT_EQ(b.p_collision, 0.0);
-  EXPECT_EQ(a.collision_free_ego_trajectories, b.collision_free_ego_trajectories);
-  EXPECT_EQ(a.ego_probability, b.ego_probability);
-  ASSERT_EQ(a.escape_routes.size(), b.escape_routes.size());
-  for (size_t k = 0; k < a.escape_routes.size(); ++k) {
-    EXPECT_EQ(a.escape_routes[k].ego_trajectory, b.escape_routes[k].ego_trajectory);
-    EXPECT_EQ(a.escape_routes[k].profile_accel_mps2, b.escape_routes[k].profile_accel_mps2);
+  const Result a = full.Estimate(far);
+  for (const Scene* scene : {&far, &alone}) {
+    const Result b = cut.Estimate(*scene);
+    EXPECT_EQ(b.p_collision, 0.0);
+    EXPECT_EQ(a.first_collision_pmf, b.first_collision_pmf);
+    EXPECT_EQ(a.collision_free_ego_trajectories, b.collision_free_ego_trajectories);
+    EXPECT_EQ(a.ego_probability, b.ego_probability);
+    EXPECT_EQ(a.ego_collision_probability, b.ego_collision_probability);
+    ASSERT_EQ(a.escape_routes.size(), b.escape_routes.size());
+    for (size_t k = 0; k < a.escape_routes.size(); ++k) {
+      EXPECT_EQ(a.escape_routes[k].ego_trajectory, b.escape_routes[k].ego_trajectory);
+      EXPECT_EQ(a.escape_routes[k].sections, b.escape_routes[k].sections);
+      EXPECT_EQ(a.escape_routes[k].profile_accel_mps2, b.escape_routes[k].profile_accel_mps2);
+    }
+    EXPECT_EQ(b.times.trajectory_ms, 0.0);  // no trajectory generated
+    EXPECT_EQ(b.objects.size(), scene->vehicles.size());
   }
-  EXPECT_GT(a.times.trajectory_ms, 0.0);  // the full estimate simulates every ego hypothesis
-  EXPECT_EQ(b.times.trajectory_ms, 0.0);  // the shortcut none
+  EXPECT_GT(a.times.trajectory_ms, 0.0);  // the full estimate simulated every hypothesis
+  ASSERT_EQ(a.objects.size(), 1u);
+  const Result b = cut.Estimate(far);
+  EXPECT_TRUE(b.objects[0].out_of_reach);
+  EXPECT_EQ(b.objects[0].contribution, 0.0);
+  EXPECT_EQ(b.objects[0].trajectories, 0);
 }
 
 }  // namespace

@@ -67,6 +67,7 @@ TEST(ResultsDb, AnticipationCountsOnlyAnEpisodeActiveAtTheImpact) {
   {
     ResultsDb db(path);
     db.BeginRun("opts", "SUMO 1.15.0", "a,b,c,d", 0.1);
+    db.SetScenario("collision", "x", 2.5, "");
     db.AddStep(Row(1.0, 0.2));
     // a: warned from 1.5 s, still warning at its collision at 3.0 s -> 1.5 s.
     db.UpdateWarningPeak(db.OpenWarning("a", 1.5, 0.6, 1.0, 2.0, "WE"), 0.9);
@@ -92,6 +93,9 @@ TEST(ResultsDb, AnticipationCountsOnlyAnEpisodeActiveAtTheImpact) {
             "0.9 1.0 WE");
   EXPECT_EQ(Query(path, "select status || ' ' || end_reason from runs"), "completed sumo-end");
   EXPECT_EQ(Query(path, "select error from runs"), "NULL");
+  EXPECT_EQ(Query(path, "select expect || ' ' || expect_partner || ' ' || quiet_until_s from runs"),
+            "collision x 2.5");
+  EXPECT_EQ(Query(path, "select category from runs"), "NULL");
   EXPECT_EQ(Query(path, "select objects || ' ' || objects_in_reach from steps"), "2 1");
 }
 
@@ -143,7 +147,7 @@ TEST(ResultsDb, AReaderHoldingTheFileNeitherBlocksNorSlowsTheRun) {
   EXPECT_EQ(Query(path, "pragma journal_mode"), "wal");
 }
 
-TEST(ResultsDb, EndRunRecordsTheFailureAndLeavesOneFile) {
+TEST(ResultsDb, EndRunRecordsTheFailureAndClosingLeavesOneFile) {
   const std::string path = TempFile("failed.sqlite");
   {
     ResultsDb db(path);
@@ -152,11 +156,10 @@ TEST(ResultsDb, EndRunRecordsTheFailureAndLeavesOneFile) {
     db.Commit();
     db.EndRun("failed", "error", "SUMO error: connection closed", "{\"status\":\"failed\"}");
   }
+  EXPECT_FALSE(Exists(path + "-wal"));  // closing folded the WAL into the file
   EXPECT_EQ(Query(path, "select status || '|' || end_reason || '|' || error from runs"),
             "failed|error|SUMO error: connection closed");
   EXPECT_EQ(Query(path, "select summary from runs"), "{\"status\":\"failed\"}");
-  EXPECT_FALSE(Exists(path + "-wal"));
-  EXPECT_EQ(Query(path, "pragma journal_mode"), "delete");
 }
 
 TEST(ResultsDb, DiscardLeavesNoFile) {

@@ -42,6 +42,9 @@ case $case in
     quiet=$(cfg_value "$name" quiet-until); partner=$(cfg_value "$name" expect-partner)
     check "$name: scenario.cfg states its quiet phase and partner" test -n "$quiet" -a -n "$partner"
     check "$name: run completed" test "$(q "$db" "select status from runs")" = completed
+    check "$name: the scenario's metadata recorded" \
+      test "$(q "$db" "select expect || ' ' || expect_partner || ' ' || quiet_until_s || ' ' || category from runs")" = \
+           "collision $partner $quiet $(cfg_value "$name" category)"
     check "$name: SUMO recorded the collision of the ego with $partner" \
       test "$(q "$db" "select count(*) from collisions where involves_ego = 1 and 'ego' in (collider, victim) and '$partner' in (collider, victim)")" -ge 1
     first=$(q "$db" "select min(time_s) from collisions where 'ego' in (collider, victim) and '$partner' in (collider, victim)")
