@@ -2,6 +2,8 @@
 
 #include <boost/program_options.hpp>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -12,6 +14,70 @@ namespace po = boost::program_options;
 namespace fs = std::filesystem;
 
 namespace criticality::plugin {
+namespace {
+
+// True when SUMO has an option of this name (asked from the sumo binary only on this error
+// path: `sumo --save-template` lists every option).
+bool SumoKnowsOption(const std::string& name) {
+  if (name.empty()) return false;
+  std::FILE* p = popen("sumo --save-template /dev/stdout 2>/dev/null", "r");
+  if (!p) return false;
+  std::string text;
+  char buf[4096];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) text.append(buf, n);
+  pclose(p);
+  return text.find("<" + name + " value=") != std::string::npos;
+}
+
+// The option a Params field is set by, for messages in the user's terms.
+std::string WithOptionNames(std::string msg) {
+  const std::pair<const char*, const char*> names[] = {
+      {"params.horizon_s", "--horizon"},
+      {"params.step_s", "--step"},
+      {"params.profiles", "--profiles"},
+      {"params.own_lane_samples", "--own-lane-samples"},
+      {"params.neighbour_lane_samples", "--neighbour-lane-samples"},
+      {"options.threads", "--threads"}};
+  for (const auto& [field, option] : names) {
+    for (size_t at = msg.find(field); at != std::string::npos; at = msg.find(field, at)) {
+      msg.replace(at, std::strlen(field), option);
+    }
+  }
+  return msg;
+}
+
+// Checks a config file line by line, so that an error names the file and the line.
+void CheckConfigFile(const std::string& path, const po::options_description& all) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument("--config '" + path + "': cannot read the file");
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::string where = path + ":" + std::to_string(number) + ": ";
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    const auto eq = line.find('=');
+    if (eq == std::string::npos)
+      throw std::invalid_argument(where + "expected 'name = value', got '" + line + "'");
+    std::string name = line.substr(first, eq - first);
+    name.erase(name.find_last_not_of(" \t") + 1);
+    if (!all.find_nothrow(name, false)) {
+      throw std::invalid_argument(where + "unknown option '" + name + "'" +
+                                  (SumoKnowsOption(name)
+                                       ? " (a SUMO option: put it in the .sumocfg file)"
+                                       : " (see --help)"));
+    }
+    std::istringstream one(line + "\n");
+    po::variables_map scratch;
+    try {
+      po::store(po::parse_config_file(one, all), scratch);
+    } catch (const po::error& e) {
+      throw std::invalid_argument(where + e.what());
+    }
+  }
+}
+
+}  // namespace
 
 std::string ActName(Act act) {
   switch (act) {
@@ -37,9 +103,10 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
 
   std::string config, act = "warn", backend = "cpu", expect;  // expect: see DriverOptions
   std::vector<std::string> events;
-  bool no_progress = false;
+  bool no_progress = false, no_shortcut = false;
   po::options_description generic("General");
   generic.add_options()("help,h", "show this help and exit")(
+      "version", "show the version (and the SUMO it was built for) and exit")(
       "config", po::value(&config),
       "read further options from FILE (same names, one 'name = value' per line; a scenario's "
       "scenario.cfg). Paths in it are relative to its folder. Command-line values win.");
@@ -97,7 +164,10 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
       "prediction horizon (s)")("step", po::value(&o.params.step_s)->default_value(o.params.step_s),
                                 "prediction step (s)")(
       "range", po::value(&o.range_m)->default_value(o.range_m),
-      "vehicles and pedestrians within this distance of an ego are considered (m)");
+      "vehicles and pedestrians within this distance of an ego are considered (m)")(
+      "no-reach-shortcut", po::bool_switch(&no_shortcut),
+      "estimate objects that cannot reach the ego within the horizon, and egos with no object "
+      "in reach, in full (the exact shortcut changes no result; this is for checking that)");
   po::options_description output("Output");
   output.add_options()("output", po::value(&o.output),
                        "results database (SQLite) to create; must not exist")(
@@ -110,7 +180,25 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
 
   po::variables_map vm;
   try {
-    po::store(po::parse_command_line(static_cast<int>(own.size()), own.data(), all), vm);
+    try {
+      po::store(po::parse_command_line(static_cast<int>(own.size()), own.data(), all), vm);
+    } catch (const po::unknown_option& e) {
+      std::string name = e.get_option_name();
+      while (!name.empty() && name[0] == '-') name.erase(0, 1);
+      if (SumoKnowsOption(name)) {
+        throw std::invalid_argument("unrecognised option '--" + name +
+                                    "': it is a SUMO option; give SUMO's options after '--', "
+                                    "e.g. sumo-criticality ... -- --" +
+                                    name + " VALUE");
+      }
+      throw;
+    }
+    if (vm.count("version")) {
+      std::cout << "sumo-criticality " << CRIT_VERSION << " (built with SUMO " << CRIT_SUMO_VERSION
+                << " headers)\n";
+      out.exit_now = true;
+      return out;
+    }
     if (vm.count("help")) {
       std::cout
           << "sumo-criticality: runs SUMO and estimates, every step, each ego's collision "
@@ -121,16 +209,17 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
              "       sumo-criticality --config scenarios/rear_end/scenario.cfg --output "
              "run.sqlite\n"
           << all
-          << "\nOn exit it prints one JSON summary line. Exit codes: 0 done, 2 bad "
-             "options or input, 3 SUMO error, 4 results could not be written, 5 ego error (never "
-             "departed; arrived or teleported while the run goes on).\n";
+          << "\nThe last line of standard output, on every exit, is a JSON summary. Exit "
+             "codes: 0 done, 1 internal error, 2 bad options or input, 3 SUMO error, 4 results "
+             "could not be written, 5 ego error (a named ego SUMO never loads, or a person), 130 "
+             "interrupted (SIGINT), 143 terminated (SIGTERM).\n";
       out.exit_now = true;
       return out;
     }
     if (vm.count("config")) {
       config = vm["config"].as<std::string>();  // stored only at notify()
+      CheckConfigFile(config, all);
       std::ifstream in(config);
-      if (!in) throw std::invalid_argument("--config '" + config + "': cannot read the file");
       po::store(po::parse_config_file(in, all), vm);
     }
     po::notify(vm);
@@ -150,6 +239,17 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
   }
   for (const std::string& e : events) o.events.push_back(ParseEvent(e));
   o.progress = !no_progress;
+  o.estimator.reach_shortcut = !no_shortcut;
+  if (!vm["end"].defaulted() && !(std::isfinite(o.end_time_s) && o.end_time_s >= 0.0)) {
+    throw std::invalid_argument("--end " + std::to_string(o.end_time_s) +
+                                ": must be a finite time >= 0 s");
+  }
+  if (!o.connect.empty() && !o.sumo_args.empty()) {
+    throw std::invalid_argument(
+        "options after '--' go to the SUMO that sumo-criticality starts; under --connect SUMO "
+        "is already running: give them to it (sumo -c ... --remote-port PORT " +
+        o.sumo_args.front() + " ...)");
+  }
   if (act == "none")
     o.act = Act::kNone;
   else if (act == "warn")
@@ -198,7 +298,11 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
     throw std::invalid_argument("--warn-release must not exceed --warn-threshold");
   if (!(o.range_m > 0.0)) throw std::invalid_argument("--range must be > 0");
   if (o.estimator.threads < 0) throw std::invalid_argument("--threads must be >= 0");
-  ValidateParams(o.params);  // InputError (an invalid_argument) names the field
+  try {
+    ValidateParams(o.params);
+  } catch (const std::invalid_argument& e) {  // InputError names the Params field
+    throw std::invalid_argument(WithOptionNames(e.what()));
+  }
   return out;
 }
 

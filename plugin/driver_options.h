@@ -31,8 +31,8 @@ struct DriverOptions {
   std::string record_scenes;  ///< directory, optional
   std::string connect;        ///< HOST:PORT, optional
   std::vector<ScenarioEvent> events;
-  double end_time_s{-1.0};   ///< stop at this simulated time (<0: when SUMO is done)
-  std::string expect;        ///< "", "collision" or "no-collision" (scenario metadata)
+  double end_time_s{-1.0};  ///< stop at this simulated time (<0: when SUMO is done)
+  std::string expect;       ///< "", "collision" or "no-collision" (scenario metadata)
   /** Scenario metadata for tests and evaluations (the driver records them, never acts on them):
    *  the ID of the vehicle or person the ego is expected to collide with; the end of the
    *  scenario's quiet phase (s: nothing critical happens before it, so a warning that starts

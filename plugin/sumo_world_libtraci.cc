@@ -11,10 +11,13 @@ namespace criticality::plugin {
 
 std::unique_ptr<SumoWorld> ConnectLibtraci(const std::string& host, int port) {
   try {
-    libtraci::Simulation::init(port, 30, host);
+    // A few retries (one per second): a SUMO just started may not listen yet, and nothing
+    // listening must fail fast.
+    libtraci::Simulation::init(port, 4, host);
   } catch (const std::exception& e) {
-    throw SumoError("cannot connect to SUMO at " + host + ":" + std::to_string(port) + ": " +
-                    e.what() + " (start it with --remote-port " + std::to_string(port) + ")");
+    throw SumoError("cannot connect to SUMO at " + host + ":" + std::to_string(port) +
+                    " within 4 s (libtraci: " + e.what() + "); start SUMO with --remote-port " +
+                    std::to_string(port) + ", or check HOST:PORT");
   }
   return std::make_unique<World>();
 }

@@ -7,6 +7,7 @@
 #include "criticality/errors.h"
 #include "src/backend.h"
 #include "src/problem.h"
+#include "src/reach_filter.h"
 #include "src/risk_assessment.h"
 #include "src/street_data.h"
 
@@ -23,6 +24,56 @@ namespace {
 double MsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
+
+// The reach shortcut's hook: applied to a built problem, it returns the problem to run (the
+// same when nothing is out of reach) and, after the run, puts the dropped objects back into
+// the result's list.
+struct ReachShortcut {
+  std::vector<char> drop;
+  bool any{false};
+  bool none_left{false};
+
+  internal::Problem Apply(const internal::Problem& pb) {
+    drop = internal::OutOfReach(pb);
+    for (char d : drop) any = any || d;
+    internal::Problem kept = any ? internal::WithoutObjects(pb, drop) : pb;
+    none_left = kept.cos.empty();
+    return kept;
+  }
+  // Answers a problem with no object left as the risk assessment of an empty pair matrix
+  // does, after the backend generated every ego trajectory: nothing collides, every ego
+  // hypothesis is an escape route candidate (tests/estimator/reach_filter_test.cc compares
+  // every field with the full estimate).
+  static void Answer(const internal::Problem& kept, const Params& params, Result* result) {
+    const int n_ego = kept.EgoTrajectories();
+    result->p_collision = 0.0;
+    result->first_collision_pmf.assign(kept.Steps(), 0.0);
+    result->objects = kept.objects;
+    result->ego_probability = kept.ego_probability;
+    result->ego_collision_probability.assign(n_ego, 0.0);
+    internal::FillEscapeRoutes(kept, params, std::vector<char>(n_ego, 0), result);
+  }
+  void Restore(const internal::Problem& pb, Result* result) const {
+    if (!any) return;
+    std::vector<ObjectResult> all;
+    size_t next = 0;
+    int offset = 0;
+    for (size_t o = 0; o < pb.objects.size(); ++o) {
+      if (drop[o]) {
+        ObjectResult r = pb.objects[o];
+        r.contribution = 0.0;
+        r.out_of_reach = true;
+        r.first_trajectory = offset;
+        r.trajectories = 0;
+        all.push_back(r);
+      } else {
+        all.push_back(result->objects[next++]);
+        offset = all.back().first_trajectory + all.back().trajectories;
+      }
+    }
+    result->objects = std::move(all);
+  }
+};
 
 }  // namespace
 
@@ -123,10 +174,17 @@ int Estimator::threads() const { return backend_->Threads(); }
 Result Estimator::Estimate(const Scene& scene) {
   const auto t0 = std::chrono::steady_clock::now();
   Result result;
-  const internal::Problem problem = internal::BuildProblem(scene, params_);
+  const internal::Problem built = internal::BuildProblem(scene, params_);
+  ReachShortcut shortcut;
+  const internal::Problem problem = options_.reach_shortcut ? shortcut.Apply(built) : built;
   result.times.street_ms = MsSince(t0);
 
-  backend_->Run(problem, params_, options_.keep_pair_matrix, &result);
+  if (shortcut.none_left) {
+    ReachShortcut::Answer(problem, params_, &result);
+  } else {
+    backend_->Run(problem, params_, options_.keep_pair_matrix, &result);
+  }
+  shortcut.Restore(built, &result);
   result.counts = problem.counts;
   result.times.total_ms = MsSince(t0);
   return result;
@@ -134,14 +192,32 @@ Result Estimator::Estimate(const Scene& scene) {
 
 std::vector<Result> Estimator::EstimateBatch(const std::vector<Scene>& scenes) {
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<internal::Problem> problems;
+  std::vector<internal::Problem> built, problems;
+  std::vector<ReachShortcut> shortcuts(scenes.size());
+  built.reserve(scenes.size());
   problems.reserve(scenes.size());
-  for (const Scene& scene : scenes) problems.push_back(internal::BuildProblem(scene, params_));
+  for (size_t k = 0; k < scenes.size(); ++k) {
+    built.push_back(internal::BuildProblem(scenes[k], params_));
+    problems.push_back(options_.reach_shortcut ? shortcuts[k].Apply(built.back()) : built.back());
+  }
   const double street_ms = MsSince(t0);
-  std::vector<const internal::Problem*> views;
-  for (const internal::Problem& pb : problems) views.push_back(&pb);
   std::vector<Result> results(scenes.size());
-  backend_->RunBatch(views, params_, options_.keep_pair_matrix, &results);
+  std::vector<const internal::Problem*> views;
+  std::vector<size_t> run;  // the problems the backend runs
+  for (size_t k = 0; k < problems.size(); ++k) {
+    if (shortcuts[k].none_left) {
+      ReachShortcut::Answer(problems[k], params_, &results[k]);
+    } else {
+      views.push_back(&problems[k]);
+      run.push_back(k);
+    }
+  }
+  if (!views.empty()) {
+    std::vector<Result> ran(views.size());
+    backend_->RunBatch(views, params_, options_.keep_pair_matrix, &ran);
+    for (size_t i = 0; i < run.size(); ++i) results[run[i]] = std::move(ran[i]);
+  }
+  for (size_t k = 0; k < results.size(); ++k) shortcuts[k].Restore(built[k], &results[k]);
   const double total_ms = MsSince(t0);
   for (size_t k = 0; k < results.size(); ++k) {
     results[k].counts = problems[k].counts;

@@ -80,9 +80,9 @@ TEST(DriverOptions, ConfigFileIsRelativeToItsFolderAndCommandLineWins) {
 }
 
 TEST(DriverOptions, ScenarioMetadata) {
-  const ParseOutcome o =
-      Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--expect", "collision",
-             "--expect-partner", "obstacle", "--quiet-until", "4.5", "--category", "static-object"});
+  const ParseOutcome o = Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--expect",
+                                "collision", "--expect-partner", "obstacle", "--quiet-until", "4.5",
+                                "--category", "static-object"});
   EXPECT_EQ(o.options.expect_partner, "obstacle");
   EXPECT_EQ(o.options.quiet_until_s, 4.5);
   EXPECT_EQ(o.options.category, "static-object");
@@ -109,6 +109,74 @@ TEST(DriverOptions, BadOptionsAreOneLineErrors) {
   EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--bogus"}),
                std::invalid_argument);
   EXPECT_NO_THROW(Parse({"--connect", "localhost:8813", "--all-vehicles", "--output", "x"}));
+}
+
+std::string ErrorOf(std::vector<const char*> args) {
+  try {
+    Parse(args);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(DriverOptions, ErrorsUseOptionNames) {
+  EXPECT_NE(ErrorOf({"--connect", "h:1", "--ego", "e", "--output", "x", "--horizon", "0"})
+                .find("--horizon = 0"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({"--connect", "h:1", "--ego", "e", "--output", "x", "--profiles", "2"})
+                .find("--profiles"),
+            std::string::npos);
+  EXPECT_EQ(ErrorOf({"--connect", "h:1", "--ego", "e", "--output", "x", "--profiles", "2"})
+                .find("params."),
+            std::string::npos);
+}
+
+TEST(DriverOptions, EndMustBeAFiniteTimeOrAbsent) {
+  for (const char* bad : {"-5", "nan", "inf", "-inf"}) {
+    EXPECT_NE(
+        ErrorOf({"--connect", "h:1", "--ego", "e", "--output", "x", "--end", bad}).find("--end"),
+        std::string::npos)
+        << bad;
+  }
+  EXPECT_EQ(
+      Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--end", "0"}).options.end_time_s,
+      0.0);
+  EXPECT_LT(Parse({"--connect", "h:1", "--ego", "e", "--output", "x"}).options.end_time_s, 0.0);
+}
+
+TEST(DriverOptions, ConfigFileErrorsNameFileAndLine) {
+  const std::string path = ::testing::TempDir() + "lines.cfg";
+  std::ofstream(path) << "# comment\nego = e\n\nwarn-threshold = high\n";
+  const std::string err = ErrorOf({"--config", path.c_str(), "--connect", "h:1", "--output", "x"});
+  EXPECT_NE(err.find(path + ":4:"), std::string::npos) << err;
+  std::ofstream(path) << "ego = e\nno equals sign\n";
+  EXPECT_NE(ErrorOf({"--config", path.c_str(), "--connect", "h:1", "--output", "x"})
+                .find(path + ":2: expected 'name = value'"),
+            std::string::npos);
+  std::ofstream(path) << "ego = e\nbogus-option = 1\n";
+  EXPECT_NE(ErrorOf({"--config", path.c_str(), "--connect", "h:1", "--output", "x"})
+                .find(path + ":2: unknown option 'bogus-option'"),
+            std::string::npos);
+}
+
+TEST(DriverOptions, SumoOptionsBelongAfterTheSeparatorAndNotUnderConnect) {
+  // `sumo` (Debian's sumo package) knows --collision.action: the error says where it goes.
+  EXPECT_NE(
+      ErrorOf({"--connect", "h:1", "--ego", "e", "--output", "x", "--collision.action", "teleport"})
+          .find("-- --collision.action"),
+      std::string::npos);
+  EXPECT_NE(ErrorOf({"--connect", "h:1", "--ego", "e", "--output", "x", "--", "--seed", "3"})
+                .find("already running"),
+            std::string::npos);
+}
+
+TEST(DriverOptions, VersionAndReachShortcut) {
+  EXPECT_TRUE(Parse({"--version"}).exit_now);
+  EXPECT_TRUE(
+      Parse({"--connect", "h:1", "--ego", "e", "--output", "x"}).options.estimator.reach_shortcut);
+  EXPECT_FALSE(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--no-reach-shortcut"})
+                   .options.estimator.reach_shortcut);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/geometry.h"
+#include "criticality/estimator.h"
 
 namespace criticality::plugin {
 namespace {
@@ -65,9 +66,7 @@ TEST(LaneCorridor, ContinuesAroundABendIntoTheNextLane) {
 }
 
 TEST(LaneCorridor, DividersThatCrossInATightTurnAreLeftOut) {
-  // A 90 deg right turn with a 4 m radius 8 m ahead: shifted 5 m to the right of the centre
-  // line (the right neighbour's far divider), the curve folds over itself and the dividers
-  // cross; the own lane (+-1.6 m) stays usable.
+  // A 90 deg right turn with a 4 m radius 8 m ahead of the vehicle.
   LaneCorridor c;
   c.centre = {{0, 0}, {8, 0}};
   for (int k = 1; k <= 9; ++k) {
@@ -78,13 +77,20 @@ TEST(LaneCorridor, DividersThatCrossInATightTurnAreLeftOut) {
   c.position_m = 0.0;
   c.width_m = 3.2;
   c.right = NeighbourLane{3.2, false};
-  const LaneSet set = SampleLaneSet(c, 12.0, core::Pose2{0.0, 0.0, 0.0});
-  if (set.own) {
-    for (int i = 0; i < 3; ++i) EXPECT_GT(set.own->left.points[i].y, set.own->right.points[i].y);
-  }
-  if (set.right) {
-    for (int i = 0; i < 3; ++i) EXPECT_GT(set.right->left.points[i].y, set.right->right.points[i].y);
-  }
+  // Sampled 14 m ahead (the far sample 6 m into the arc), the right neighbour's far divider,
+  // 4.8 m right of the centre line (more than the 4 m radius), folds back behind its middle
+  // sample: that lane is left out; the own lane (+-1.6 m) stays.
+  const LaneSet set = SampleLaneSet(c, 14.0, core::Pose2{0.0, 0.0, 0.0});
+  ASSERT_TRUE(set.own);
+  for (int i = 0; i < 3; ++i) EXPECT_GT(set.own->left.points[i].y, set.own->right.points[i].y);
+  EXPECT_EQ(LaneProblem(*set.own), "");
+  EXPECT_FALSE(set.right);
+  // On a straight corridor the same neighbour is kept: it was left out for its crossing
+  // dividers, not for being a right lane.
+  c.centre = {{0, 0}, {100, 0}};
+  const LaneSet straight = SampleLaneSet(c, 14.0, core::Pose2{0.0, 0.0, 0.0});
+  ASSERT_TRUE(straight.right);
+  EXPECT_NEAR(straight.right->right.points[2].y, -4.8, 1e-9);
 }
 
 TEST(LaneCorridor, VehicleAcrossItsLaneGetsNoLanes) {

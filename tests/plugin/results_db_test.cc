@@ -1,9 +1,12 @@
-// The results database: schema, episodes, anticipation times, refusing to overwrite.
+// The results database: schema, episodes, anticipation times, commits, readers during a run,
+// refusing to overwrite, leaving nothing behind when discarded.
 #include "plugin/results_db.h"
 
 #include <gtest/gtest.h>
 #include <sqlite3.h>
+#include <sys/stat.h>
 
+#include <chrono>
 #include <cstdio>
 #include <string>
 
@@ -14,7 +17,7 @@ std::string Query(const std::string& path, const std::string& sql) {
   sqlite3* db = nullptr;
   sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
   sqlite3_stmt* s = nullptr;
-  std::string out;
+  std::string out = "<no row>";
   if (sqlite3_prepare_v2(db, sql.c_str(), -1, &s, nullptr) == SQLITE_OK &&
       sqlite3_step(s) == SQLITE_ROW) {
     const unsigned char* t = sqlite3_column_text(s, 0);
@@ -27,42 +30,147 @@ std::string Query(const std::string& path, const std::string& sql) {
 
 std::string TempFile(const char* name) {
   const std::string path = ::testing::TempDir() + name;
-  std::remove(path.c_str());
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) std::remove((path + suffix).c_str());
   return path;
 }
 
-TEST(ResultsDb, AnticipationIsCollisionTimeMinusTheWarningStart) {
+bool Exists(const std::string& path) {
+  struct stat st {};
+  return stat(path.c_str(), &st) == 0;
+}
+
+StepRow Row(double t, double p = 0.0) {
+  StepRow r;
+  r.time_s = t;
+  r.ego = "ego";
+  r.p_collision = p;
+  r.objects = 2;
+  r.objects_in_reach = 1;
+  return r;
+}
+
+CollisionRow Collision(double t, const char* collider, const char* victim) {
+  CollisionRow c;
+  c.time_s = t;
+  c.collider = collider;
+  c.victim = victim;
+  c.type = "collision";
+  c.lane = "WE_1";
+  c.x_m = 10.0;
+  c.y_m = -5.0;
+  c.involves_ego = true;
+  return c;
+}
+
+TEST(ResultsDb, AnticipationCountsOnlyAnEpisodeActiveAtTheImpact) {
   const std::string path = TempFile("anticipation.sqlite");
   {
     ResultsDb db(path);
-    db.BeginRun("opts", "SUMO 1.15.0", "ego");
-    db.AddStep(1.0, "ego", 0.2, 3.0, 2, 20.0, false);
-    const long long w = db.OpenWarning("ego", 1.5, 0.6);
-    db.UpdateWarningPeak(w, 0.9);
-    db.AddCollision(CollisionRow{3.0, "ego", "lead", "car", "car", "collision", "WE_1", 20, 5, 99});
-    db.AddCollision(
-        CollisionRow{4.0, "other", "third", "car", "car", "collision", "WE_0", 9, 8, 12});
-    db.CloseWarning(w, 3.2);
-    db.EndRun("completed");
+    db.BeginRun("opts", "SUMO 1.15.0", "a,b,c,d", 0.1);
+    db.SetScenario("collision", "x", 2.5, "");
+    db.AddStep(Row(1.0, 0.2));
+    // a: warned from 1.5 s, still warning at its collision at 3.0 s -> 1.5 s.
+    db.UpdateWarningPeak(db.OpenWarning("a", 1.5, 0.6, 1.0, 2.0, "WE"), 0.9);
+    db.AddCollision(Collision(3.0, "a", "x"));
+    // b: an episode that ended exactly one step before the impact counts...
+    db.CloseWarning(db.OpenWarning("b", 2.0, 0.6, 0, 0, "WE"), 2.9);
+    db.AddCollision(Collision(3.0, "b", "x"));
+    // c: ...one that ended two steps before does not.
+    db.CloseWarning(db.OpenWarning("c", 2.0, 0.6, 0, 0, "WE"), 2.8);
+    db.AddCollision(Collision(3.0, "y", "c"));
+    // d: an episode starting after the impact does not either.
+    db.OpenWarning("d", 3.5, 0.6, 0, 0, "WE");
+    db.AddCollision(Collision(3.0, "d", "x"));
+    db.Commit();
+    db.EndRun("completed", "sumo-end", "", "{}");
   }
-  EXPECT_EQ(Query(path, "select anticipation_s from collisions where collider='ego'"), "1.5");
-  EXPECT_EQ(Query(path, "select anticipation_s from collisions where collider='other'"), "NULL");
-  EXPECT_EQ(Query(path, "select peak_p from warnings"), "0.9");
-  EXPECT_EQ(Query(path, "select status from runs"), "completed");
-  EXPECT_EQ(Query(path, "select count(*) from steps"), "1");
+  EXPECT_EQ(Query(path, "select anticipation_s from collisions where collider='a'"), "1.5");
+  EXPECT_EQ(Query(path, "select round(anticipation_s, 9) from collisions where collider='b'"),
+            "1.0");
+  EXPECT_EQ(Query(path, "select anticipation_s from collisions where victim='c'"), "NULL");
+  EXPECT_EQ(Query(path, "select anticipation_s from collisions where collider='d'"), "NULL");
+  EXPECT_EQ(Query(path, "select peak_p || ' ' || x_m || ' ' || edge from warnings where ego='a'"),
+            "0.9 1.0 WE");
+  EXPECT_EQ(Query(path, "select status || ' ' || end_reason from runs"), "completed sumo-end");
+  EXPECT_EQ(Query(path, "select error from runs"), "NULL");
+  EXPECT_EQ(Query(path, "select expect || ' ' || expect_partner || ' ' || quiet_until_s from runs"),
+            "collision x 2.5");
+  EXPECT_EQ(Query(path, "select category from runs"), "NULL");
+  EXPECT_EQ(Query(path, "select objects || ' ' || objects_in_reach from steps"), "2 1");
 }
 
-TEST(ResultsDb, CommittedStepsSurviveWithoutEndRun) {
+TEST(ResultsDb, OnlyCommittedStepsSurvive) {
   const std::string path = TempFile("killed.sqlite");
   {
     ResultsDb db(path);
-    db.BeginRun("opts", "v", "ego");
-    db.AddStep(0.1, "ego", 0.0, 1.0, 0, 10.0, false);
+    db.BeginRun("opts", "v", "ego", 0.1);
+    db.AddStep(Row(0.1));
+    db.AddEgoEvent(0.1, "ego", "depart", "");
     db.Commit();
-    db.AddStep(0.2, "ego", 0.0, 1.0, 0, 10.0, false);  // never committed
-  }  // as if killed after the first step (the destructor's COMMIT is the only difference)
+    db.AddStep(Row(0.2));  // never committed: the run dies before the step ends
+  }                        // closing rolls the open transaction back, as a killed process loses it
   EXPECT_EQ(Query(path, "select status from runs"), "running");
-  EXPECT_GE(std::stoi(Query(path, "select count(*) from steps")), 1);
+  EXPECT_EQ(Query(path, "select count(*) from steps"), "1");
+  EXPECT_EQ(Query(path, "select time_s from steps"), "0.1");
+  EXPECT_EQ(Query(path, "select event from ego_events"), "depart");
+  EXPECT_NE(Query(path, "select heartbeat_unix from runs"), "NULL");
+}
+
+TEST(ResultsDb, AReaderHoldingTheFileNeitherBlocksNorSlowsTheRun) {
+  const std::string path = TempFile("reader.sqlite");
+  ResultsDb db(path);
+  db.BeginRun("opts", "v", "ego", 0.1);
+  db.AddStep(Row(0.1));
+  db.Commit();
+  // A reader in the middle of a read transaction (as `sqlite3 run.sqlite "select ..."` is).
+  sqlite3* reader = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(path.c_str(), &reader, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(reader, "BEGIN; SELECT count(*) FROM steps;", nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int k = 2; k <= 20; ++k) {
+    db.AddStep(Row(0.1 * k));
+    db.Commit();  // in rollback-journal mode this waits for the reader, then fails
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(seconds, 1.0);  // not the 5 s busy timeout
+  // The reader keeps its snapshot until it ends its transaction, then sees everything.
+  sqlite3_stmt* s = nullptr;
+  sqlite3_prepare_v2(reader, "SELECT count(*) FROM steps", -1, &s, nullptr);
+  ASSERT_EQ(sqlite3_step(s), SQLITE_ROW);
+  EXPECT_EQ(sqlite3_column_int(s, 0), 1);
+  sqlite3_finalize(s);
+  sqlite3_exec(reader, "COMMIT", nullptr, nullptr, nullptr);
+  sqlite3_close(reader);
+  EXPECT_EQ(Query(path, "select count(*) from steps"), "20");
+  EXPECT_EQ(Query(path, "pragma journal_mode"), "wal");
+}
+
+TEST(ResultsDb, EndRunRecordsTheFailureAndClosingLeavesOneFile) {
+  const std::string path = TempFile("failed.sqlite");
+  {
+    ResultsDb db(path);
+    db.BeginRun("opts", "v", "ego", 0.1);
+    db.AddStep(Row(0.1));
+    db.Commit();
+    db.EndRun("failed", "error", "SUMO error: connection closed", "{\"status\":\"failed\"}");
+  }
+  EXPECT_FALSE(Exists(path + "-wal"));  // closing folded the WAL into the file
+  EXPECT_EQ(Query(path, "select status || '|' || end_reason || '|' || error from runs"),
+            "failed|error|SUMO error: connection closed");
+  EXPECT_EQ(Query(path, "select summary from runs"), "{\"status\":\"failed\"}");
+}
+
+TEST(ResultsDb, DiscardLeavesNoFile) {
+  const std::string path = TempFile("discard.sqlite");
+  ResultsDb db(path);
+  db.BeginRun("opts", "v", "ego", 0.1);
+  ASSERT_TRUE(Exists(path));
+  db.Discard();
+  EXPECT_FALSE(Exists(path));
+  EXPECT_FALSE(Exists(path + "-wal"));
+  EXPECT_FALSE(Exists(path + "-shm"));
 }
 
 TEST(ResultsDb, RefusesToOverwriteAndNamesTheProblem) {

@@ -40,6 +40,11 @@ struct EstimatorOptions {
   int threads{0};
   /** Keep Result::first_collision_step (2 bytes per ego x CO trajectory pair). */
   bool keep_pair_matrix{false};
+  /** The exact reach shortcut (src/reach_filter.h): collision objects that cannot come near
+   *  any ego hypothesis within the horizon are left out (ObjectResult::out_of_reach), and a
+   *  scene with no object left is answered without generating trajectories. Changes no
+   *  probability; the pair matrix then holds only the kept objects' columns. */
+  bool reach_shortcut{false};
 };
 
 class EstimatorBackend;

@@ -21,6 +21,10 @@ struct ObjectResult {
   /** Its share of p_collision: sum over ego hypotheses of p_ego * (chronologically scaled
    *  probability that this object is the first one hit). The shares add up to p_collision. */
   double contribution{0.0};
+  /** Left out by the exact reach shortcut (EstimatorOptions::reach_shortcut): none of its
+   *  hypotheses can come near any ego hypothesis, so it has no colliding pair. It stays listed,
+   *  with contribution 0 and no trajectories (trajectories = 0). */
+  bool out_of_reach{false};
 };
 
 /** A collision-free ego hypothesis (paper Sec. V-A, "escape routes"). */

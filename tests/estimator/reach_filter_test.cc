@@ -1,0 +1,264 @@
+// The exact reach shortcut (src/reach_filter.h): the ego's reach bound holds for every
+// simulated ego hypothesis, and the shortcut changes nothing in the result on scenes whose
+// objects sit at the edge of reach (same p_cra, contributions, pair matrix of the kept objects,
+// escape routes; no dropped object has a colliding pair in the full estimate).
+#include "src/reach_filter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "bench/paper_scenes.h"
+#include "core/oriented_box.h"
+#include "core/trajectory_generation.h"
+#include "criticality/estimator.h"
+
+namespace criticality {
+namespace {
+
+using internal::BuildProblem;
+using internal::EgoReachBound;
+
+double Uni(std::mt19937_64& rng, double lo, double hi) {
+  return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+
+// Lanes: straight three lanes, a curved own lane, or none (virtual lane).
+LaneSet SomeLanes(std::mt19937_64& rng) {
+  const unsigned kind = rng() % 3;
+  if (kind == 0) return bench::StraightThreeLanes();
+  if (kind == 1) return LaneSet{};
+  const double c = Uni(rng, -0.01, 0.01);  // curvature-ish: y = c x^2
+  Lane own;
+  for (int i = 0; i < 3; ++i) {
+    const double x = 25.0 * i;
+    own.left.points[i] = Point2{x, c * x * x + 1.75};
+    own.right.points[i] = Point2{x, c * x * x - 1.75};
+  }
+  LaneSet set;
+  set.own = own;
+  return set;
+}
+
+// Params a user may choose, within what ValidateParams accepts.
+Params SomeParams(std::mt19937_64& rng) {
+  Params p;
+  p.friction = Uni(rng, 0.3, 1.3);
+  p.max_steer_rad = Uni(rng, 0.3, 1.2);
+  p.max_steer_rate_radps = Uni(rng, 0.5, 3.0);
+  p.step_s = rng() % 2 ? 0.02 : 0.05;
+  p.horizon_s = rng() % 2 ? 2.0 : 3.0;
+  p.jerk_mps3 = Uni(rng, 10.0, 80.0);
+  p.latency_s = Uni(rng, 0.0, 0.3);
+  p.profiles = 3 + static_cast<int>(rng() % 4);
+  return p;
+}
+
+Ego SomeEgo(std::mt19937_64& rng) {
+  Ego e;
+  // Low speeds (kinematic model, the seam) as often as high ones.
+  e.state.speed_mps = rng() % 2 ? Uni(rng, 0.0, 4.0) : Uni(rng, 4.0, 40.0);
+  e.state.accel_mps2 = Uni(rng, -9.0, 4.0);
+  e.state.yaw_rate_radps = Uni(rng, -0.6, 0.6);
+  e.state.sideslip_rad = Uni(rng, -0.05, 0.05);
+  e.length_m = Uni(rng, 3.5, 6.0);
+  e.width_m = Uni(rng, 1.5, 2.2);
+  e.lanes = SomeLanes(rng);
+  return e;
+}
+
+TEST(ReachFilter, EgoReachBoundHoldsForEverySimulatedEgoHypothesis) {
+  std::mt19937_64 rng(20261124);
+  double tightest = 1e9;  // smallest margin between the bound and a hypothesis at the horizon
+  for (int trial = 0; trial < 40; ++trial) {
+    const Params params = SomeParams(rng);
+    Scene scene;
+    scene.ego = SomeEgo(rng);
+    const internal::Problem pb = BuildProblem(scene, params);
+    const std::vector<double> bound = EgoReachBound(pb.ego, pb.sim);
+    const int steps = pb.sim.n_steps;
+    std::vector<double> x(steps), y(steps), yaw(steps);
+    for (int t = 0; t < pb.ego.Trajectories(); ++t) {
+      core::SimulateHypothesis(pb.ego, pb.sim, t / pb.ego.n_paths, t % pb.ego.n_paths, x.data(),
+                               y.data(), yaw.data());
+      for (int n = 0; n < steps; ++n) {
+        const double d = std::hypot(x[n] - scene.ego.state.x_m, y[n] - scene.ego.state.y_m);
+        ASSERT_LE(d, bound[n + 1]) << "trial " << trial << " hypothesis " << t << " step " << n;
+      }
+      tightest = std::min(tightest, bound[steps] - std::hypot(x[steps - 1], y[steps - 1]));
+    }
+  }
+  // The bound is a bound, not a guess far out: some hypothesis comes within a few metres.
+  EXPECT_LT(tightest, 6.0);
+}
+
+// A scene whose objects sit around the edge of the ego's reach: at the bound's distance plus
+// the bounding radii, plus or minus a few metres, heading anywhere.
+Scene EdgeScene(std::mt19937_64& rng, const Params& params) {
+  Scene s;
+  s.ego = SomeEgo(rng);
+  s.ego.state.x_m = Uni(rng, -50.0, 50.0);
+  s.ego.state.y_m = Uni(rng, -50.0, 50.0);
+  s.ego.state.yaw_rad = Uni(rng, -3.1, 3.1);
+  const internal::Problem pb = BuildProblem(s, params);
+  const double reach = EgoReachBound(pb.ego, pb.sim).back();
+  const int vehicles = 1 + static_cast<int>(rng() % 5);
+  for (int i = 0; i < vehicles; ++i) {
+    Vehicle v;
+    v.id = "v" + std::to_string(i);
+    v.length_m = Uni(rng, 3.0, 12.0);
+    v.width_m = Uni(rng, 1.5, 2.6);
+    const double r = core::BoundingRadius(0.5 * s.ego.length_m, 0.5 * s.ego.width_m) +
+                     core::BoundingRadius(0.5 * v.length_m, 0.5 * v.width_m);
+    const double bearing = Uni(rng, -3.14159, 3.14159);
+    const double d = reach + r + Uni(rng, -5.0, 25.0);
+    v.state.x_m = s.ego.state.x_m + d * std::cos(bearing);
+    v.state.y_m = s.ego.state.y_m + d * std::sin(bearing);
+    // Towards the ego (most critical), away, or across.
+    const unsigned heading = rng() % 3;
+    v.state.yaw_rad = bearing +
+                      (heading == 0   ? 3.14159
+                       : heading == 1 ? 0.0
+                                      : 1.5708) +
+                      Uni(rng, -0.3, 0.3);
+    v.state.speed_mps = Uni(rng, 0.0, 30.0);
+    v.state.accel_mps2 = Uni(rng, -4.0, 3.0);
+    v.state.yaw_rate_radps = Uni(rng, -0.3, 0.3);
+    if (rng() % 2) v.lanes = SomeLanes(rng);
+    s.vehicles.push_back(v);
+  }
+  const int pedestrians = static_cast<int>(rng() % 3);
+  for (int i = 0; i < pedestrians; ++i) {
+    Pedestrian p;
+    p.id = "p" + std::to_string(i);
+    const double r = core::BoundingRadius(0.5 * s.ego.length_m, 0.5 * s.ego.width_m) +
+                     core::BoundingRadius(0.25, 0.25);
+    const double bearing = Uni(rng, -3.14159, 3.14159);
+    const double d = reach + r + Uni(rng, -1.0, 8.0);
+    p.state.x_m = s.ego.state.x_m + d * std::cos(bearing);
+    p.state.y_m = s.ego.state.y_m + d * std::sin(bearing);
+    p.state.yaw_rad = bearing + 3.14159 + Uni(rng, -0.5, 0.5);
+    p.state.speed_mps = Uni(rng, 0.0, 2.7);
+    s.pedestrians.push_back(p);
+  }
+  return s;
+}
+
+TEST(ReachFilter, ShortcutGivesTheFullEstimateAtTheEdgeOfReach) {
+  std::mt19937_64 rng(424242);
+  int dropped = 0, kept_colliding = 0, kept_clear = 0, answered_without_trajectories = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    Params params = SomeParams(rng);
+    params.horizon_s = 2.0;  // keep the full estimates quick
+    params.step_s = 0.05;
+    const Scene scene = EdgeScene(rng, params);
+    EstimatorOptions full_opt, cut_opt;
+    full_opt.threads = cut_opt.threads = 2;
+    full_opt.keep_pair_matrix = cut_opt.keep_pair_matrix = true;
+    cut_opt.reach_shortcut = true;
+    Estimator full(params, full_opt), cut(params, cut_opt);
+    const Result a = full.Estimate(scene);
+    const Result b = cut.Estimate(scene);
+    const std::string what = "trial " + std::to_string(trial);
+    ASSERT_EQ(a.objects.size(), b.objects.size()) << what;
+    EXPECT_EQ(a.p_collision, b.p_collision) << what;
+    EXPECT_EQ(a.first_collision_pmf, b.first_collision_pmf) << what;
+    EXPECT_EQ(a.ego_collision_probability, b.ego_collision_probability) << what;
+    EXPECT_EQ(a.collision_free_ego_trajectories, b.collision_free_ego_trajectories) << what;
+    ASSERT_EQ(a.escape_routes.size(), b.escape_routes.size()) << what;
+    for (size_t k = 0; k < a.escape_routes.size(); ++k) {
+      EXPECT_EQ(a.escape_routes[k].ego_trajectory, b.escape_routes[k].ego_trajectory) << what;
+    }
+    const int n_ego = a.counts.ego_trajectories;
+    const int a_cols = a.counts.co_trajectories, b_cols = b.counts.co_trajectories;
+    bool any_kept = false;
+    for (size_t o = 0; o < a.objects.size(); ++o) {
+      const ObjectResult& fo = a.objects[o];
+      const ObjectResult& co = b.objects[o];
+      EXPECT_EQ(fo.id, co.id) << what;
+      EXPECT_EQ(fo.contribution, co.contribution) << what << " " << fo.id;
+      bool collides = false;
+      for (int i = 0; i < n_ego; ++i) {
+        for (int j = 0; j < fo.trajectories; ++j) {
+          const std::int16_t full_step =
+              a.first_collision_step[static_cast<size_t>(i) * a_cols + fo.first_trajectory + j];
+          collides = collides || full_step > 0;
+          if (!co.out_of_reach) {
+            ASSERT_EQ(
+                full_step,
+                b.first_collision_step[static_cast<size_t>(i) * b_cols + co.first_trajectory + j])
+                << what << " " << fo.id;
+          }
+        }
+      }
+      if (co.out_of_reach) {
+        ++dropped;
+        EXPECT_FALSE(collides) << what << ": " << fo.id << " was dropped but collides";
+        EXPECT_EQ(co.trajectories, 0) << what;
+      } else {
+        any_kept = true;
+        ++(collides ? kept_colliding : kept_clear);
+      }
+    }
+    if (!any_kept) {
+      ++answered_without_trajectories;
+      EXPECT_EQ(b.counts.co_trajectories, 0) << what;
+      EXPECT_TRUE(b.first_collision_step.empty()) << what;
+    }
+    // The batch path gives the same.
+    const std::vector<Result> batch = cut.EstimateBatch({scene, scene});
+    EXPECT_EQ(batch[1].p_collision, a.p_collision) << what;
+    EXPECT_EQ(batch[1].objects.size(), b.objects.size()) << what;
+  }
+  // The scenes exercise both sides of the edge.
+  EXPECT_GE(dropped, 40);
+  EXPECT_GE(kept_colliding, 10);
+  EXPECT_GE(kept_clear, 10);
+  EXPECT_GE(answered_without_trajectories, 5);
+  std::printf("dropped %d, kept colliding %d, kept clear %d, answered without trajectories %d\n",
+              dropped, kept_colliding, kept_clear, answered_without_trajectories);
+}
+
+TEST(ReachFilter, AnEgoWithNoObjectInReachIsAnsweredWithoutTrajectories) {
+  // One vehicle 500 m away (the full estimate simulates and checks it), and the same ego alone.
+  Scene far;
+  far.ego.state.speed_mps = 12.0;
+  far.ego.lanes = bench::StraightThreeLanes();
+  Vehicle v;
+  v.id = "far";
+  v.state.x_m = 500.0;
+  v.state.speed_mps = 12.0;
+  far.vehicles.push_back(v);
+  Scene alone = far;
+  alone.vehicles.clear();
+  EstimatorOptions full_opt, cut_opt;
+  cut_opt.reach_shortcut = true;
+  Estimator full(Params{}, full_opt), cut(Params{}, cut_opt);
+  const Result a = full.Estimate(far);
+  for (const Scene* scene : {&far, &alone}) {
+    const Result b = cut.Estimate(*scene);
+    EXPECT_EQ(b.p_collision, 0.0);
+    EXPECT_EQ(a.first_collision_pmf, b.first_collision_pmf);
+    EXPECT_EQ(a.collision_free_ego_trajectories, b.collision_free_ego_trajectories);
+    EXPECT_EQ(a.ego_probability, b.ego_probability);
+    EXPECT_EQ(a.ego_collision_probability, b.ego_collision_probability);
+    ASSERT_EQ(a.escape_routes.size(), b.escape_routes.size());
+    for (size_t k = 0; k < a.escape_routes.size(); ++k) {
+      EXPECT_EQ(a.escape_routes[k].ego_trajectory, b.escape_routes[k].ego_trajectory);
+      EXPECT_EQ(a.escape_routes[k].sections, b.escape_routes[k].sections);
+      EXPECT_EQ(a.escape_routes[k].profile_accel_mps2, b.escape_routes[k].profile_accel_mps2);
+    }
+    EXPECT_EQ(b.times.trajectory_ms, 0.0);  // no trajectory generated
+    EXPECT_EQ(b.objects.size(), scene->vehicles.size());
+  }
+  EXPECT_GT(a.times.trajectory_ms, 0.0);  // the full estimate simulated every hypothesis
+  ASSERT_EQ(a.objects.size(), 1u);
+  const Result b = cut.Estimate(far);
+  EXPECT_TRUE(b.objects[0].out_of_reach);
+  EXPECT_EQ(b.objects[0].contribution, 0.0);
+  EXPECT_EQ(b.objects[0].trajectories, 0);
+}
+
+}  // namespace
+}  // namespace criticality
