@@ -76,7 +76,11 @@ TEST(Estimator, EveryHypothesisCollidingGivesOne) {
   EXPECT_NEAR(r.p_collision, 1.0, 1e-12);
   EXPECT_NEAR(r.first_collision_pmf[0], 1.0, 1e-12);
   EXPECT_EQ(r.collision_free_ego_trajectories, 0);
-  EXPECT_TRUE(r.escape_routes.empty());
+  EXPECT_NEAR(r.unavoidability, 1.0, 1e-12);
+  EXPECT_NEAR(r.p_reference, 1.0, 1e-12);
+  // Escape routes are never empty: the least colliding ones (here all collide for sure).
+  ASSERT_EQ(r.escape_routes.size(), 10u);
+  for (const EscapeRoute& e : r.escape_routes) EXPECT_NEAR(e.collision_probability, 1.0, 1e-12);
   for (std::int16_t s : r.first_collision_step) EXPECT_EQ(s, 1);
 }
 

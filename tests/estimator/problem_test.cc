@@ -41,8 +41,8 @@ TEST(Problem, ReferenceHypothesisIsTheMostProbable) {
     EXPECT_EQ(core::SectionOfPath(pb.ego, i % pb.ego.n_paths, k), 3);
 }
 
-TEST(Problem, WeavingEgoPathsArePenalised) {
-  Params p;
+TEST(Problem, PaperLiteralPenalisesSectionChanges) {
+  Params p = ParamsPreset("paper-literal");
   const Problem pb = BuildProblem(bench::PaperSceneS1(), p);
   const int cruise = p.profiles - 2;  // the zero profile
   auto prob = [&](int s0, int s1, int s2) {
@@ -58,9 +58,10 @@ TEST(Problem, WeavingEgoPathsArePenalised) {
   EXPECT_LT(ratio, ratio_flat);
 }
 
-TEST(Problem, ProfilesForEgoAreSlipsAndForOthersAccelerations) {
-  const Problem pb = BuildProblem(bench::PaperSceneS1(), Params{});
+TEST(Problem, PaperLiteralProfilesForEgoAreSlipsAndForOthersAccelerations) {
+  const Problem pb = BuildProblem(bench::PaperSceneS1(), ParamsPreset("paper-literal"));
   EXPECT_EQ(pb.ego.model, core::MotionModelKind::kTwoTrack);
+  EXPECT_FALSE(pb.ego.force_profiles);
   EXPECT_EQ(pb.ego.profile_target[0], -0.1);
   EXPECT_EQ(pb.ego.profile_target[5], 0.1);
   EXPECT_EQ(pb.cos[0].model, core::MotionModelKind::kOneTrack);
