@@ -11,7 +11,11 @@
 // matrix form above, expanded), and each axle's side force saturates at the share of its
 // friction limit mu F_z (static load) that the longitudinal acceleration leaves:
 // sqrt(1 - (a_x / (mu g))^2). Then |(a_x, F_y / m)| <= mu g: the friction circle of the whole
-// vehicle (Params::friction_limited_lateral).
+// vehicle (Params::friction_limited_lateral). Saturation alone lets a hard step steer spin the
+// car (both axles saturate together at the limit); as a driver or a stability control would,
+// the steering angle is also limited to the steady-state angle at the limit,
+// delta_max(v) = (L + EG v^2) a_lat,max / v^2 (EG the understeer gradient, Schramm et al. 2014),
+// "a steering limit that depends on speed".
 #include <cmath>
 
 #include "core/hd.h"
@@ -32,8 +36,12 @@ CRIT_HD StateDerivative OneTrackDerivative(const VehicleParams& p, const MotionS
     const double r = ax / mu_g;
     // Friction left for side force, per unit of axle load (N per N of weight).
     const double side = p.friction * std::sqrt(Max(0.0, 1.0 - r * r));
-    const double weight_per_l = m * kGravity / (lf + lr);
+    const double wheelbase = lf + lr;
+    const double weight_per_l = m * kGravity / wheelbase;
     const double f_max = side * weight_per_l * lr, r_max = side * weight_per_l * lf;
+    const double gradient = Max(0.0, m * (cr * lr - cf * lf) / (cf * cr * wheelbase));
+    const double steer_max = (wheelbase + gradient * v * v) * side * kGravity / (v * v);
+    steer = Clamp(steer, -steer_max, steer_max);
     const double fyf = Clamp(cf * (steer - s.beta - lf * s.yaw_rate / v), -f_max, f_max);
     const double fyr = Clamp(cr * (-s.beta + lr * s.yaw_rate / v), -r_max, r_max);
     d.v_dot = ax;
