@@ -130,13 +130,16 @@ void ExpectFamiliesAgree(const Variant& v) {
     with_collisions += colliding > 0;
   }
   EXPECT_GE(with_collisions, 3) << tag;  // or agreement would prove little
+  int picked = 0;
   for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) {
     if (d.name == "stopped-car-ttc-1.50" || d.name == "motorway-neighbours-alongside" ||
         d.name == "pedestrian-crosses-ttc-1.2" || d.name == "junction-car-crosses-ttc-1.3" ||
         d.name == "cut-in-ttc-1.0" || d.name == "pedestrians-on-sidewalks") {
       ExpectSameResult(d.scene, v.params, d.name + tag);
+      ++picked;
     }
   }
+  EXPECT_EQ(picked, 6) << "discrimination scenes renamed?";
   // Crowded without collisions: a fast path that invents collisions fails here.
   for (unsigned variant = 0; variant < 2; ++variant) {
     const size_t colliding = ExpectSameResult(CrowdedCollisionFree(variant), v.params,

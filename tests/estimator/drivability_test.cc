@@ -141,7 +141,9 @@ TEST(Drivability, EgoDriveIsLimited) {
       const double v_dot = (state[n].v - state[n - 1].v) / pb.sim.tau;
       const double limit = core::DriveAccelLimit(pb.ego, state[n - 1].v);
       EXPECT_LE(v_dot, limit + 1e-9) << "v0 " << v0 << " step " << n;
-      if (n * pb.sim.tau > 0.6) EXPECT_GT(v_dot, 0.99 * limit) << "v0 " << v0 << " step " << n;
+      if (n * pb.sim.tau > 0.6) {
+        EXPECT_GT(v_dot, 0.99 * limit) << "v0 " << v0 << " step " << n;
+      }
     }
   }
 }

@@ -241,6 +241,7 @@ TEST(Estimator, BatchGivesWhatEachEstimateGives) {
     if (d.name == "junction-car-crosses-ttc-1.3" || d.name == "pedestrian-crosses-ttc-1.2")
       scenes.push_back(d.scene);
   }
+  ASSERT_EQ(scenes.size(), 6u) << "discrimination scenes renamed?";
   EstimatorOptions opt;
   opt.keep_pair_matrix = true;
   Estimator estimator(Params{}, opt);
@@ -379,7 +380,9 @@ TEST(Estimator, EscapeRouteRecordsTheManoeuvreADriverWouldFollow) {
     EXPECT_GT(side > 0 ? -*lo : *hi, 0.005);  // and counter-steers to straighten up
     for (size_t n = 0; n < best.steer_rad.size(); ++n) {
       EXPECT_LE(std::hypot(best.accel_mps2[n], best.lateral_accel_mps2[n]), 9.81 * (1 + 1e-9));
-      if (best.time_s[n] < 0.3 - 1e-9) EXPECT_EQ(best.steer_rad[n], 0.0);  // steering latency
+      if (best.time_s[n] < 0.3 - 1e-9) {
+        EXPECT_EQ(best.steer_rad[n], 0.0);  // steering latency
+      }
     }
     EXPECT_EQ(best.speed_mps.size(), best.time_s.size());
     return;
