@@ -49,8 +49,11 @@ struct HypothesisSet {
   bool power_limited{false};
   double drive_traction{0.0};  ///< m/s^2
 
-  /** Until this time the vehicle holds its current steering angle (Params::steer_latency_s). */
+  /** Until this time the vehicle keeps following its reference path (the centre of its own
+   *  lane, as a driver does without reacting to anything); its hypothesis' path takes over
+   *  after it (Params::steer_latency_s). */
   double steer_latency{0.0};
+  Parabola reference_path;
 
   // Lateral: section[k][l] is the path section through lateral sample l (right to left) that
   // is tracked until instant_time[k].

@@ -81,15 +81,16 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
     while (k >= 0 && k < h.n_instants - 1 && k < kMaxSampleInstants - 1 && t >= h.instant_time[k])
       ++k;
     st->instant = k;
-    const Parabola& section = h.section[st->instant][SectionOfPath(h, path, st->instant)];
+    // Lateral reaction latency: until then the vehicle follows its reference path; its
+    // hypothesis' path section after it.
+    const Parabola& section = t < h.steer_latency
+                                  ? h.reference_path
+                                  : h.section[st->instant][SectionOfPath(h, path, st->instant)];
     // Trig of yaw and sideslip once per step; the course by the angle-sum identities.
     double cb = std::cos(s.beta), sb = std::sin(s.beta);
     const double cy = std::cos(s.yaw), sy = std::sin(s.yaw);
-    // Lateral reaction latency: the current steering angle is held until then.
-    if (t >= h.steer_latency) {
-      st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau, cy * cb - sy * sb,
-                                  sy * cb + cy * sb);
-    }
+    st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau, cy * cb - sy * sb,
+                                sy * cb + cy * sb);
     double longitudinal = RampedValue(t, h.profile_start, target, h.latency, h.rate);
     const bool kinematic = s.v < h.seam_speed;
     StateDerivative d;

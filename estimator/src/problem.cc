@@ -49,6 +49,13 @@ double ReferenceDistance(double v0, double a0, double t) {
 
 bool Naturalistic(const Params& p) { return p.scoring == Params::Scoring::kNaturalistic; }
 
+// Naturalistic n_acc of an acceleration deviation: Gaussian, wider for braking.
+double AccelScore(const Params& p, double deviation) {
+  const double z =
+      deviation / (deviation < 0.0 ? p.decel_score_sigma_mps2 : p.accel_score_sigma_mps2);
+  return core::GaussianScore(z * z);
+}
+
 core::VehicleParams VehicleModelParams(double length, double width, std::optional<double> height,
                                        const Params& p) {
   core::VehicleParams vp = VehicleParamsFor(ClassifyVehicle(length, width, height), length, width);
@@ -58,11 +65,19 @@ core::VehicleParams VehicleModelParams(double length, double width, std::optiona
   return vp;
 }
 
+// Pose and motion state; for vehicles after h->vehicle is set.
 void SetPose(const ObjectState& s, double length, double width, core::HypothesisSet* h) {
   h->X_WL = core::Pose2{s.x_m, s.y_m, s.yaw_rad};
   h->v0 = s.speed_mps;
   h->beta0 = s.sideslip_rad;
   h->yaw_rate0 = s.yaw_rate_radps;
+  // A vehicle's measured state must be drivable too: a yaw rate whose lateral acceleration v r
+  // exceeds the friction limit is a measurement artefact (SUMO's headings jump on junction
+  // lanes), limited to mu g / v.
+  if (h->vehicle.friction_limited && h->v0 > 0.0) {
+    const double limit = h->vehicle.friction * core::kGravity / h->v0;
+    h->yaw_rate0 = core::Clamp(h->yaw_rate0, -limit, limit);
+  }
   h->accel0 = s.accel_mps2;
   h->half_length = 0.5 * length;
   h->half_width = 0.5 * width;
@@ -109,6 +124,7 @@ std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool 
   // Offsets of each sample from the own lane's centre where the reference trajectory is at
   // each sample instant.
   const core::Parabola centre = lanes.own->Centre();
+  h->reference_path = centre;
   std::vector<double> offset(static_cast<size_t>(n_inst) * n_lat);
   for (int k = 0; k < n_inst; ++k) {
     const double x = ReferenceDistance(h->v0, h->accel0, p.path_sample_times_s[k]);
@@ -220,21 +236,30 @@ std::vector<double> ProfileDistances(const core::HypothesisSet& h, double target
 }
 
 // d_lon of every profile: exp(-mean_i (dx_i / sigma_x(t_i))^2 / 2), dx_i the distance the
-// profile gains or loses on the reference profile by sample instant t_i, sigma_x(t) = sigma_a
-// t^2 / 2 (the spread the naturalistic acceleration spread gives; for pedestrians sigma_v t,
-// the spread of walking speeds).
+// profile gains or loses on the reference profile by sample instant t_i. For vehicles,
+// sigma_x(t) is what a profile one sigma_a off the reference gains or loses by then, through
+// the same latency, ramp and drive limit (so d_lon measures the same deviation as n_acc, in
+// distance: what a stop or the power limit make of it); for pedestrians sigma_v t, the spread
+// of walking speeds.
 void SetLongitudinalScores(const core::HypothesisSet& h, int reference, double scale,
                            const Params& p, bool pedestrian, std::vector<ProfileScore>* out) {
   if (reference < 0) return;
-  const std::vector<double> ref =
-      ProfileDistances(h, h.profile_target[reference], scale, p, pedestrian);
+  const double ref_target = h.profile_target[reference];
+  const std::vector<double> ref = ProfileDistances(h, ref_target, scale, p, pedestrian);
+  std::vector<double> slower, faster;
+  if (!pedestrian) {
+    slower = ProfileDistances(h, ref_target - p.decel_score_sigma_mps2 / scale, scale, p, false);
+    faster = ProfileDistances(h, ref_target + p.accel_score_sigma_mps2 / scale, scale, p, false);
+  }
+  constexpr double kMinSigma = 0.01;  // m: a stopped vehicle cannot lose distance
   for (int k = 0; k < h.n_profiles; ++k) {
     const std::vector<double> d = ProfileDistances(h, h.profile_target[k], scale, p, pedestrian);
     double z2 = 0.0;
     for (size_t i = 0; i < d.size(); ++i) {
       const double t = p.path_sample_times_s[i];
-      const double sigma =
-          pedestrian ? p.pedestrian_speed_sigma_mps * t : 0.5 * p.accel_score_sigma_mps2 * t * t;
+      double sigma = p.pedestrian_speed_sigma_mps * t;
+      if (!pedestrian) sigma = std::fabs((d[i] < ref[i] ? slower[i] : faster[i]) - ref[i]);
+      sigma = core::Max(sigma, kMinSigma);
       z2 += ((d[i] - ref[i]) / sigma) * ((d[i] - ref[i]) / sigma);
     }
     (*out)[k].d_lon = core::GaussianScore(z2 / static_cast<double>(d.size()));
@@ -277,8 +302,7 @@ std::vector<ProfileScore> SetVehicleProfiles(const Params& p, core::HypothesisSe
     }
     if (Naturalistic(p)) {
       for (int k = 0; k < p.profiles; ++k) {
-        const double dev = (a[k] - current) / p.accel_score_sigma_mps2;
-        scores[k].n_acc = core::GaussianScore(dev * dev);
+        scores[k].n_acc = AccelScore(p, a[k] - current);
       }
     }
   } else {
@@ -301,8 +325,7 @@ std::vector<ProfileScore> SetVehicleProfiles(const Params& p, core::HypothesisSe
                                                          std::fabs(p.vehicle_accel_max_mps2));
     for (int k = 0; k < p.profiles; ++k) {
       if (Naturalistic(p)) {
-        const double dev = (a[k] - current) / p.accel_score_sigma_mps2;
-        scores[k].n_acc = core::GaussianScore(dev * dev);
+        scores[k].n_acc = AccelScore(p, a[k] - current);
       } else {
         scores[k].n_acc = core::DeviationScore(h->profile_target[k] - h->profile_start, range);
       }
@@ -359,9 +382,9 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   {
     core::HypothesisSet& h = pb.ego;
     h.model = core::MotionModelKind::kTwoTrack;
-    SetPose(scene.ego.state, scene.ego.length_m, scene.ego.width_m, &h);
     h.vehicle =
         VehicleModelParams(scene.ego.length_m, scene.ego.width_m, scene.ego.height_m, params);
+    SetPose(scene.ego.state, scene.ego.length_m, scene.ego.width_m, &h);
     h.seam_speed = core::SeamSpeed(h.vehicle, params.step_s, params.euler_stability_factor);
     const std::vector<ProfileScore> profiles =
         SetVehicleProfiles(params, &h, &pb.ego_profile_accel, &pb.ego_profile_slip);
@@ -383,8 +406,8 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     const std::string where = "scene.vehicles[" + std::to_string(i) + "]";
     core::HypothesisSet h;
     h.model = core::MotionModelKind::kOneTrack;
-    SetPose(v.state, v.length_m, v.width_m, &h);
     h.vehicle = VehicleModelParams(v.length_m, v.width_m, v.height_m, params);
+    SetPose(v.state, v.length_m, v.width_m, &h);
     h.seam_speed = core::SeamSpeed(h.vehicle, params.step_s, params.euler_stability_factor);
     ObjectResult info;
     info.id = v.id;
@@ -435,8 +458,7 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     for (int k = 0; k < h.n_profiles; ++k) {
       h.profile_target[k] = a[k];
       if (Naturalistic(params)) {
-        const double dev = (a[k] - current) / params.accel_score_sigma_mps2;
-        profiles[k].n_acc = core::GaussianScore(dev * dev);
+        profiles[k].n_acc = AccelScore(params, a[k] - current);
       } else {
         profiles[k].n_acc = core::DeviationScore(h.profile_target[k] - h.accel0, scale);
       }

@@ -138,6 +138,7 @@ void ValidateParams(const Params& p) {
   if (p.scoring != Params::Scoring::kPaperLiteral && p.scoring != Params::Scoring::kNaturalistic)
     Fail("params.scoring", static_cast<int>(p.scoring), "must be kPaperLiteral or kNaturalistic");
   RequirePositive("params.accel_score_sigma_mps2", p.accel_score_sigma_mps2);
+  RequirePositive("params.decel_score_sigma_mps2", p.decel_score_sigma_mps2);
   RequirePositive("params.lateral_offset_sigma_m", p.lateral_offset_sigma_m);
   RequirePositive("params.heading_score_sigma_rad", p.heading_score_sigma_rad);
   RequirePositive("params.pedestrian_speed_sigma_mps", p.pedestrian_speed_sigma_mps);

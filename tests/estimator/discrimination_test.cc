@@ -1,8 +1,8 @@
 // The discrimination benchmark (bench/discrimination_scenes.h) with the default parameters:
 // p rises monotonically as the time to collision falls, every safe-close scene stays below
 // every critical one (time to collision <= 1.5 s) by a clear margin, and the targets
-// hold (safe-close <= 0.15; critical <= 1.5 s: >= 0.8; <= 1.0 s: >= 0.95). Both p_cra and
-// p_reference (what the driver's warning uses by default, ALGORITHM.md) are held to it. The
+// hold (safe-close <= 0.15; critical <= 1.5 s: >= 0.8; <= 1.0 s: >= 0.95). Both p_cra (what
+// the driver's warning should use, ALGORITHM.md) and p_reference are held to it. The
 // paper-literal scoring does not separate them, which is why the defaults changed.
 #include <gtest/gtest.h>
 
@@ -54,7 +54,8 @@ TEST_P(Discrimination, PRisesAsTimeToCollisionFalls) {
       return ta > tb;
     });
     for (size_t k = 1; k < members.size(); ++k) {
-      EXPECT_GE(P(*members[k], reference), P(*members[k - 1], reference))
+      // (1e-9: at certainty the chronological products round differently)
+      EXPECT_GE(P(*members[k], reference), P(*members[k - 1], reference) - 1e-9)
           << name << ": " << members[k]->scene.name << " after " << members[k - 1]->scene.name;
     }
     EXPECT_GE(P(*members.back(), reference), 0.95) << name;

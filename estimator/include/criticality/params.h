@@ -86,9 +86,11 @@ struct Params {
 
   // --- Drivability (DESIGN.md: every hypothesis must be drivable). The paper asks for drivable
   // trajectories but leaves these limits open; ParamsPreset("paper-literal") turns them off. ---
-  /** Lateral reaction latency: until this time a vehicle (ego or other) holds its current
-   *  steering angle; then the lateral controller steers towards its path. The counterpart of
-   *  latency_s for braking (DESIGN.md: "reaction latency for steering as for braking").
+  /** Lateral reaction latency: until this time a vehicle (ego or other) keeps following its
+   *  reference path (its own lane's centre, which needs no reaction: a car finishing a turn
+   *  straightens up with its lane); then the lateral controller steers towards its
+   *  hypothesis' path. The counterpart of latency_s for braking (DESIGN.md: "reaction latency
+   *  for steering as for braking").
    *  Summala (1981, Human Factors 23(6)) measured about 1.5 s for unalerted drivers to start an
    *  avoidance steer; hypotheses also cover manoeuvres already decided, so we take the
    *  movement-and-actuation part only: about 0.2 s to move the hands (as latency_s for the
@@ -99,8 +101,9 @@ struct Params {
    *  what the friction circle leaves beside the longitudinal force (mu F_z per axle, static
    *  loads), and the kinematic model's steering is limited so that v^2 tan(delta) / L stays
    *  within it. So |a| = hypot(a_x, a_y) <= mu g for every vehicle hypothesis (the two-track
-   *  ego has its friction circle per wheel already). Paper-literal: off (the linear one-track
-   *  model of the paper has no grip limit: lane changes reached 1.6 g). */
+   *  ego has its friction circle per wheel already). A measured yaw rate beyond the limit (v r >
+   *  mu g: SUMO's headings jump on junction lanes) is limited to mu g / v. Paper-literal: off
+   *  (the linear one-track model of the paper has no grip limit: lane changes reached 1.6 g). */
   bool friction_limited_lateral{true};
   /** Positive acceleration limited by traction and power: a <= min(drive_traction_share mu g,
    *  P / (m v)), P / m by vehicle class (vehicle_class.h: segment averages, at the wheels).
@@ -140,23 +143,34 @@ struct Params {
   double w_acc{1.0};
   double w_str{4.0};
   /** kNaturalistic: n_acc = exp(-(a_k - a_ref)^2 / (2 sigma_a^2)), a_ref = the current
-   *  acceleration. Bosetti, Da Lio & Saroldi (2014, Eur. Transp. Res. Rev. 6:157-170; 35 h of
-   *  naturalistic urban, extra-urban and motorway driving): drivers' longitudinal
-   *  accelerations stay within about +-2 m/s^2 outside emergencies, far inside the friction
-   *  limit; sigma_a = 1 m/s^2 puts that envelope at 2 sigma. */
+   *  acceleration, sigma_a = accel_score_sigma_mps2 for a_k > a_ref. Bosetti, Da Lio & Saroldi
+   * (2014, Eur. Transp. Res. Rev. 6:157-170; 35 h of naturalistic urban, extra-urban and motorway
+   * driving): drivers' longitudinal accelerations stay within about +-2 m/s^2 outside emergencies,
+   * far inside the friction limit; sigma_a = 1 m/s^2 puts that envelope at 2 sigma. */
   double accel_score_sigma_mps2{1.0};
+  /** The same for a deceleration (a_k < a_ref, and in d_str a distance lost): drivers brake
+   *  harder than they accelerate. AASHTO (A Policy on Geometric Design of Highways and
+   *  Streets, 2011, stopping sight distance): most drivers stopping for an unexpected object
+   *  decelerate at more than 4.5 m/s^2, and 3.4 m/s^2 is comfortable for most; sigma = 2.5
+   *  m/s^2 puts them at 1.4 and 1.8 sigma (a car braking at 4-5 m/s^2 to yield at a junction is
+   *  not a rare event: SUMO's drivers do it late), while an emergency stop (9.7 m/s^2) stays
+   *  out at 3.9 sigma. */
+  double decel_score_sigma_mps2{2.5};
   /** kNaturalistic: d_str = exp(-(mean_i (dy_i / sigma_y)^2 + mean_i (dx_i / sigma_x(t_i))^2) / 2)
    *  over the sample instants t_i: dy_i the path sample's offset from the reference (own-lane
    *  centre; for pedestrians the heading change over heading_score_sigma_rad replaces it), dx_i
-   *  the distance the profile gains or loses on the reference trajectory, sigma_x(t) =
-   *  sigma_a t^2 / 2 (the spread sigma_a gives). sigma_y: the standard deviation of lateral
-   *  position of sober drivers on a motorway is about 0.18-0.25 m (Verster & Roth 2011, Int. J.
-   *  Gen. Med. 4:359-371, the on-the-road driving test); we take 0.25 m. */
+   *  the distance the profile gains or loses on the reference trajectory, sigma_x(t_i) what a
+   *  profile one sigma_a off the reference (decel_score_sigma_mps2 for a distance lost) gains
+   *  or loses by t_i through the same latency, ramp and drive limit: the same deviation as
+   *  n_acc measures, in distance, so that a stop or the power limit counts as it happens.
+   *  sigma_y: the standard deviation of lateral position of sober drivers on a motorway is
+   *  about 0.18-0.25 m (Verster & Roth 2011, Int. J. Gen. Med. 4:359-371, the on-the-road
+   *  driving test); we take 0.25 m. */
   double lateral_offset_sigma_m{0.25};
-  /** kNaturalistic, pedestrians: sigma_x(t) = pedestrian_speed_sigma_mps * t replaces sigma_a
-   *  t^2 / 2 in d_str: a walker's position strays from the constant-speed prediction as
-   *  walking speeds spread. Fugger et al. (2001, SAE 2001-01-0896; 288 pedestrians at
-   *  signalised crosswalks): steady walking speed 1.36 +- 0.24 m/s. */
+  /** kNaturalistic, pedestrians: sigma_x(t) = pedestrian_speed_sigma_mps * t in d_str: a
+   *  walker's position strays from the constant-speed prediction as walking speeds spread. Fugger
+   * et al. (2001, SAE 2001-01-0896; 288 pedestrians at signalised crosswalks): steady walking
+   * speed 1.36 +- 0.24 m/s. */
   double pedestrian_speed_sigma_mps{0.24};
   /** kNaturalistic, pedestrians: heading change width. Project choice (no naturalistic source
    *  found): 0.5 rad, so that the neighbouring headings (+-51 deg with 7 headings) keep about
