@@ -2,15 +2,20 @@
 // (median and minimum over --repeat runs, after --warmup runs). No SUMO dependency: it must run
 // on a bare GPU machine. With --json the last line of standard output is one JSON object.
 #include <algorithm>
-#include <chrono>
 #include <boost/program_options.hpp>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench/discrimination_scenes.h"
 #include "bench/paper_scenes.h"
 #include "criticality/errors.h"
 #include "criticality/estimator.h"
@@ -34,6 +39,9 @@ struct Options {
   bool compare{false};
   int cos{-1};
   int batch{0};
+  std::string preset{"default"};
+  bool discrimination{false};
+  std::string save_scenes;
 };
 
 struct Timing {
@@ -133,20 +141,100 @@ void PrintReport(const Scene& scene, const Params& params, const Result& r) {
   } else {
     std::printf("\nNo hypothesis combination collides within %.1f s.\n", params.horizon_s);
   }
-  std::printf("\nEscape routes: %d of %d ego hypotheses are collision-free. Most probable:\n",
-              r.collision_free_ego_trajectories, r.counts.ego_trajectories);
+  std::printf(
+      "\nIf the ego keeps its reference (hypothesis %d): p = %.4f; unavoidability (the "
+      "least colliding ego hypothesis) = %.4f\n",
+      r.reference_ego_trajectory, r.p_reference, r.unavoidability);
+  std::printf(
+      "\nEscape routes: %d of %d ego hypotheses are collision-free. Least colliding, then "
+      "most probable:\n",
+      r.collision_free_ego_trajectories, r.counts.ego_trajectories);
   const size_t show = std::min<size_t>(5, r.escape_routes.size());
   for (size_t k = 0; k < show; ++k) {
     const EscapeRoute& e = r.escape_routes[k];
-    std::ostringstream sections;
-    for (size_t s = 0; s < e.sections.size(); ++s) sections << (s ? "," : "") << e.sections[s];
+    std::ostringstream lanes;
+    for (size_t s = 0; s < e.target_lanes.size(); ++s) {
+      lanes << (s ? "," : "")
+            << (e.target_lanes[s] < 0   ? "right"
+                : e.target_lanes[s] > 0 ? "left"
+                                        : "own");
+    }
+    double max_steer = 0.0, max_lat = 0.0;
+    for (size_t n = 0; n < e.steer_rad.size(); ++n) {
+      max_steer = std::max(max_steer, std::fabs(e.steer_rad[n]));
+      max_lat = std::max(max_lat, std::fabs(e.lateral_accel_mps2[n]));
+    }
     std::printf(
-        "  #%zu  hypothesis %4d  slip %+.3f (about %+.1f m/s^2)  lateral samples [%s]  p = %.5f\n",
-        k + 1, e.ego_trajectory, e.profile_slip, e.profile_accel_mps2, sections.str().c_str(),
-        e.probability);
+        "  #%zu  hypothesis %4d  p_collision %.4f  p = %.5f  accel %+.1f m/s^2 (slip %+.3f)  lanes "
+        "[%s]\n      after %.1f s: speed %.1f m/s, offset %+.2f m from the own-lane centre; max "
+        "steer %.3f rad, max lateral accel %.1f m/s^2\n",
+        k + 1, e.ego_trajectory, e.collision_probability, e.probability, e.profile_accel_mps2,
+        e.profile_slip, lanes.str().c_str(), e.time_s.empty() ? 0.0 : e.time_s.back(),
+        e.speed_mps.empty() ? 0.0 : e.speed_mps.back(),
+        e.lateral_offset_m.empty() ? 0.0 : e.lateral_offset_m.back(), max_steer, max_lat);
+  }
+}
+
+// The discrimination benchmark: every designed scene, its label and the outputs.
+int Discrimination(const Params& params, const Options& opt) {
+  const std::vector<bench::DiscriminationScene> scenes = bench::DiscriminationScenes();
+  if (!opt.save_scenes.empty()) {
+    std::filesystem::create_directories(opt.save_scenes);
+    for (const bench::DiscriminationScene& d : scenes) {
+      const std::string file = opt.save_scenes + "/" + d.name + ".scene";
+      std::ofstream out(file);
+      WriteScene(out, d.scene);
+      if (!out) throw InputError("--save-scenes: cannot write '" + file + "'");
+    }
+  }
+  EstimatorOptions eopt;
+  eopt.backend = ParseBackend(opt.backend);
+  eopt.threads = opt.threads;
+  Estimator estimator(params, eopt);
+  std::printf("discrimination benchmark, preset %s, backend %s\n", opt.preset.c_str(),
+              BackendName(estimator.options().backend).c_str());
+  std::printf("%-38s %-10s %6s %9s %11s %14s %12s  %s\n", "scene", "label", "TTC s", "p_cra",
+              "p_reference", "unavoidability", "best escape", "best route (accel, lanes)");
+  std::string json = "{\"preset\":\"" + JsonEscape(opt.preset) + "\",\"scenes\":[";
+  double safe_max = 0.0, critical_min = 1.0;
+  for (size_t k = 0; k < scenes.size(); ++k) {
+    const bench::DiscriminationScene& d = scenes[k];
+    const Result r = estimator.Estimate(d.scene);
+    const EscapeRoute* best = r.escape_routes.empty() ? nullptr : &r.escape_routes.front();
+    std::ostringstream route;
+    if (best) {
+      route << std::showpos << std::fixed << std::setprecision(1) << best->profile_accel_mps2
+            << std::noshowpos << " m/s^2, ";
+      for (size_t s = 0; s < best->target_lanes.size(); ++s) {
+        route << (s ? "," : "")
+              << (best->target_lanes[s] < 0   ? "R"
+                  : best->target_lanes[s] > 0 ? "L"
+                                              : "O");
+      }
+    }
+    char ttc[16] = "-";
+    if (d.ttc_s > 0.0) std::snprintf(ttc, sizeof ttc, "%.2f", d.ttc_s);
+    std::printf("%-38s %-10s %6s %9.4f %11.4f %14.4f %12.4f  %s\n", d.name.c_str(),
+                d.critical ? "critical" : "safe-close", ttc, r.p_collision, r.p_reference,
+                r.unavoidability, best ? best->collision_probability : 1.0, route.str().c_str());
+    if (d.critical && d.ttc_s <= 1.5) critical_min = std::min(critical_min, r.p_collision);
+    if (!d.critical) safe_max = std::max(safe_max, r.p_collision);
+    char item[512];
+    std::snprintf(item, sizeof item,
+                  "%s{\"name\":\"%s\",\"critical\":%s,\"ttc_s\":%.3f,\"p_collision\":%.17g,"
+                  "\"p_reference\":%.17g,\"unavoidability\":%.17g,\"best_escape\":%.17g}",
+                  k ? "," : "", JsonEscape(d.name).c_str(), d.critical ? "true" : "false", d.ttc_s,
+                  r.p_collision, r.p_reference, r.unavoidability,
+                  best ? best->collision_probability : 1.0);
+    json += item;
   }
   std::printf(
-      "  (lateral samples count from the right: 0-1 right lane, 2-4 ego lane, 5-6 left lane)\n");
+      "highest safe-close p_cra %.4f, lowest critical (TTC <= 1.5 s) p_cra %.4f, margin "
+      "%.4f\n",
+      safe_max, critical_min, critical_min - safe_max);
+  json += "]}";
+  if (opt.json) std::printf("%s\n", json.c_str());
+  return 0;
 }
 
 // A fleet of egos in one call: copies of the scene with the ego's speed spread over +-20 %.
@@ -165,20 +253,23 @@ int Batch(const Scene& scene, const Params& params, const Options& opt) {
   for (int k = 0; k < opt.repeat; ++k) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::vector<Result> results = estimator.EstimateBatch(scenes);
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     p_sum = 0.0;
     for (const Result& r : results) p_sum += r.p_collision;
   }
   const double median = Median(ms);
-  std::printf("batch of %d %s-size egos, backend %s (%d threads): median %.3f ms per batch, "
-              "%.1f egos/s, mean p_collision %.6f\n",
-              opt.batch, opt.scene.c_str(), BackendName(estimator.options().backend).c_str(),
-              estimator.threads(), median, opt.batch / (median * 1e-3), p_sum / opt.batch);
+  std::printf(
+      "batch of %d %s-size egos, backend %s (%d threads): median %.3f ms per batch, "
+      "%.1f egos/s, mean p_collision %.6f\n",
+      opt.batch, opt.scene.c_str(), BackendName(estimator.options().backend).c_str(),
+      estimator.threads(), median, opt.batch / (median * 1e-3), p_sum / opt.batch);
   if (opt.json) {
-    std::printf("{\"scene\":\"%s\",\"backend\":\"%s\",\"batch\":%d,\"median_ms\":%.6f,"
-                "\"egos_per_s\":%.3f,\"mean_p_collision\":%.17g}\n",
-                JsonEscape(opt.scene).c_str(), BackendName(estimator.options().backend).c_str(),
-                opt.batch, median, opt.batch / (median * 1e-3), p_sum / opt.batch);
+    std::printf(
+        "{\"scene\":\"%s\",\"backend\":\"%s\",\"batch\":%d,\"median_ms\":%.6f,"
+        "\"egos_per_s\":%.3f,\"mean_p_collision\":%.17g}\n",
+        JsonEscape(opt.scene).c_str(), BackendName(estimator.options().backend).c_str(), opt.batch,
+        median, opt.batch / (median * 1e-3), p_sum / opt.batch);
   }
   return 0;
 }
@@ -270,7 +361,16 @@ int main(int argc, char** argv) {
       "estimate a batch of this many scenes in one call (Estimator::EstimateBatch): copies of the "
       "scene with the ego's speed varied, as a fleet of egos; reports egos per second")(
       "report", po::bool_switch(&opt.report),
-      "print a readable summary of the result (per-object shares, collision times, escape routes)");
+      "print a readable summary of the result (per-object shares, collision times, p_reference, "
+      "unavoidability, escape routes)")(
+      "preset", po::value(&opt.preset)->default_value(opt.preset),
+      "parameter set: default (drivable hypotheses, naturalistic scoring) or paper-literal (the "
+      "first implementation, for comparison)")(
+      "discrimination", po::bool_switch(&opt.discrimination),
+      "run the discrimination benchmark: designed scenes labelled safe-close or critical, with "
+      "p_cra, p_reference, unavoidability and the best escape route of each")(
+      "save-scenes", po::value(&opt.save_scenes),
+      "with --discrimination: also write every scene as a scene file into this folder");
   try {
     po::variables_map vm;
     po::store(po::parse_command_line(argc, argv, desc), vm);
@@ -285,8 +385,9 @@ int main(int argc, char** argv) {
     if (opt.warmup < 0)
       throw InputError("--warmup = " + std::to_string(opt.warmup) + ": must be >= 0");
 
-    Params params;
+    Params params = ParamsPreset(opt.preset);
     params.profiles = opt.profiles;
+    if (opt.discrimination) return Discrimination(params, opt);
     EstimatorOptions eopt;
     eopt.backend = ParseBackend(opt.backend);
     eopt.threads = opt.threads;
@@ -303,7 +404,8 @@ int main(int argc, char** argv) {
       scene = bench::PaperScene(opt.scene);
     }
     if (opt.compare) return Compare(scene, params, opt);
-    if (opt.batch < 0 || opt.batch > 1000000) throw InputError("--batch = " + std::to_string(opt.batch) + ": use 1 to 1000000");
+    if (opt.batch < 0 || opt.batch > 1000000)
+      throw InputError("--batch = " + std::to_string(opt.batch) + ": use 1 to 1000000");
     if (opt.batch > 0) return Batch(scene, params, opt);
     Estimator estimator(params, eopt);
 

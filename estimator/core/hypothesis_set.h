@@ -33,13 +33,27 @@ struct HypothesisSet {
   double half_length{2.25};
   double half_width{0.9};
 
-  // Longitudinal: profile k targets profile_target[k] (acceleration, slip for the two-track
-  // model), starting from profile_start, after `latency`, at `rate` per second.
+  // Longitudinal: profile k targets profile_target[k] (acceleration; for the two-track model a
+  // longitudinal slip, or with force_profiles a tyre force demand a / (mu g)), starting from
+  // profile_start, after `latency`, at `rate` per second.
   int n_profiles{0};
   double profile_target[kMaxProfiles]{};
   double profile_start{0.0};
   double latency{0.0};
   double rate{0.0};
+  /** Two-track model: profiles are force demands a / (mu g) on the four wheels (ramped in
+   *  acceleration) instead of slips (Params::ego_profiles_in_accel). */
+  bool force_profiles{false};
+  /** Positive acceleration limited to min(drive_traction, P / (m v)) (Params::
+   *  power_limited_drive; P / m = vehicle.power_per_mass_wpkg). */
+  bool power_limited{false};
+  double drive_traction{0.0};  ///< m/s^2
+
+  /** Until this time the vehicle keeps following its reference path (the centre of its own
+   *  lane, as a driver does without reacting to anything); its hypothesis' path takes over
+   *  after it (Params::steer_latency_s). */
+  double steer_latency{0.0};
+  Parabola reference_path;
 
   // Lateral: section[k][l] is the path section through lateral sample l (right to left) that
   // is tracked until instant_time[k].
@@ -59,6 +73,12 @@ struct HypothesisSet {
 
   CRIT_HD int Trajectories() const { return n_profiles * n_paths; }
 };
+
+/** The largest positive acceleration the drive gives at speed v (power_limited). */
+CRIT_HD double DriveAccelLimit(const HypothesisSet& h, double v) {
+  const double power = h.vehicle.power_per_mass_wpkg / (v > 0.1 ? v : 0.1);
+  return power < h.drive_traction ? power : h.drive_traction;
+}
 
 /** Lateral sample index that `path` uses at sample instant `instant`. */
 CRIT_HD int SectionOfPath(const HypothesisSet& h, int path, int instant) {

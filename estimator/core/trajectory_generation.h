@@ -31,6 +31,15 @@ CRIT_HD double InitialSteer(const HypothesisSet& h, const ControllerLimits& c) {
   return Clamp(std::atan(wheelbase * h.yaw_rate0 / h.v0), -c.max_steer_rad, c.max_steer_rad);
 }
 
+/** What a vehicle simulation did at each step, for reports and tests (escape routes record the
+ *  manoeuvre, tests check the friction circle): after step n (time (n+1) tau), the state in
+ *  the object's local frame and the steering angle commanded for that step. Arrays of n_steps;
+ *  null = not recorded. */
+struct StepTrace {
+  MotionState* state{nullptr};
+  double* steer{nullptr};
+};
+
 /** Where a vehicle simulation stands between steps; lets ego paths that share their first
  *  path sections share the simulation of that prefix (the state after it is the same). */
 struct SimulationState {
@@ -57,10 +66,12 @@ CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h,
  *  group's instant. The stride lets the GPU store poses step-major. */
 CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig& cfg, int profile,
                                   int path, int n_begin, int n_end, SimulationState* st, double* x,
-                                  double* y, double* yaw, int stride = 1) {
+                                  double* y, double* yaw, int stride = 1,
+                                  StepTrace* trace = nullptr) {
   const double tau = cfg.tau;
   const double target = h.profile_target[profile];
   const double c0 = std::cos(h.X_WL.yaw), s0 = std::sin(h.X_WL.yaw);
+  const double mu_g = h.vehicle.friction * kGravity;
   MotionState& s = st->s;
   // The slip profile is constant once its ramp ends: its tyre-curve value is reused then.
   double cached_slip = 0.0, cached_factor = LongitudinalForceFactor(0.0);
@@ -70,27 +81,39 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
     while (k >= 0 && k < h.n_instants - 1 && k < kMaxSampleInstants - 1 && t >= h.instant_time[k])
       ++k;
     st->instant = k;
-    const Parabola& section = h.section[st->instant][SectionOfPath(h, path, st->instant)];
+    // Lateral reaction latency: until then the vehicle follows its reference path; its
+    // hypothesis' path section after it.
+    const Parabola& section = t < h.steer_latency
+                                  ? h.reference_path
+                                  : h.section[st->instant][SectionOfPath(h, path, st->instant)];
     // Trig of yaw and sideslip once per step; the course by the angle-sum identities.
     double cb = std::cos(s.beta), sb = std::sin(s.beta);
     const double cy = std::cos(s.yaw), sy = std::sin(s.yaw);
     st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau, cy * cb - sy * sb,
                                 sy * cb + cy * sb);
-    const double longitudinal = RampedValue(t, h.profile_start, target, h.latency, h.rate);
+    double longitudinal = RampedValue(t, h.profile_start, target, h.latency, h.rate);
     const bool kinematic = s.v < h.seam_speed;
     StateDerivative d;
     if (h.model == MotionModelKind::kTwoTrack) {
-      if (longitudinal != cached_slip) {
-        cached_slip = longitudinal;
-        cached_factor = LongitudinalForceFactor(longitudinal);
-      }
-      if (kinematic) {
-        d = KinematicSingleTrack(h.vehicle, st->steer,
-                                 h.vehicle.friction * kGravity * cached_factor, &s);
+      double factor;
+      if (h.force_profiles) {
+        factor = longitudinal;
       } else {
-        d = TwoTrackDerivative(h.vehicle, s, st->steer, cached_factor, cb, sb);
+        if (longitudinal != cached_slip) {
+          cached_slip = longitudinal;
+          cached_factor = LongitudinalForceFactor(longitudinal);
+        }
+        factor = cached_factor;
+      }
+      if (h.power_limited && factor > 0.0) factor = Min(factor, DriveAccelLimit(h, s.v) / mu_g);
+      if (kinematic) {
+        d = KinematicSingleTrack(h.vehicle, st->steer, mu_g * factor, &s);
+      } else {
+        d = TwoTrackDerivative(h.vehicle, s, st->steer, factor, cb, sb);
       }
     } else {
+      if (h.power_limited && longitudinal > 0.0)
+        longitudinal = Min(longitudinal, DriveAccelLimit(h, s.v));
       d = kinematic ? KinematicSingleTrack(h.vehicle, st->steer, longitudinal, &s)
                     : OneTrackDerivative(h.vehicle, s, st->steer, longitudinal);
     }
@@ -103,6 +126,10 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
     x[at] = h.X_WL.x + c0 * s.x - s0 * s.y;
     y[at] = h.X_WL.y + s0 * s.x + c0 * s.y;
     yaw[at] = h.X_WL.yaw + s.yaw;
+    if (trace) {
+      trace->state[n] = s;
+      trace->steer[n] = st->steer;
+    }
   }
 }
 
@@ -120,7 +147,8 @@ CRIT_HD void InstantBoundaries(const HypothesisSet& h, const SimulationConfig& c
 
 /** Simulates hypothesis (profile, path) of `h`; writes n_steps poses to x[n * stride], ... */
 CRIT_HD void SimulateHypothesis(const HypothesisSet& h, const SimulationConfig& cfg, int profile,
-                                int path, double* x, double* y, double* yaw, int stride = 1) {
+                                int path, double* x, double* y, double* yaw, int stride = 1,
+                                StepTrace* trace = nullptr) {
   if (h.model == MotionModelKind::kPedestrian) {
     const double heading = h.heading[path];
     const double target = h.profile_target[profile];
@@ -135,7 +163,7 @@ CRIT_HD void SimulateHypothesis(const HypothesisSet& h, const SimulationConfig& 
     return;
   }
   SimulationState st = InitialSimulationState(h, cfg);
-  SimulateVehicleSteps(h, cfg, profile, path, 0, cfg.n_steps, &st, x, y, yaw, stride);
+  SimulateVehicleSteps(h, cfg, profile, path, 0, cfg.n_steps, &st, x, y, yaw, stride, trace);
 }
 
 }  // namespace criticality::core

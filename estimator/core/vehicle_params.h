@@ -15,6 +15,12 @@ struct VehicleParams {
   double friction{1.0};             ///< tyre-road friction coefficient mu
   /** Speed below which the kinematic single-track model replaces the dynamic models. */
   double kinematic_below_mps{2.0};
+  /** Friction-limited lateral dynamics (Params::friction_limited_lateral): the one-track
+   *  model's axle side forces saturate within the friction circle, the kinematic model's
+   *  steering is limited to it. False: the paper's linear one-track model. */
+  bool friction_limited{false};
+  /** Driving power at the wheels per unit mass, W/kg (vehicle class, vehicle_class.h). */
+  double power_per_mass_wpkg{60.0};
 };
 
 }  // namespace criticality::core

@@ -27,11 +27,23 @@ struct BatchHost {
 
   /** A layout whose pointers point into these host vectors. */
   BatchLayout HostView() const {
-    return BatchLayout{problems,        steps,           TotalEgo(),        TotalCo(),
-                       set_base.data(), ego_base.data(), co_base.data(),    pair_base.data(),
-                       obj_base.data(), ego_obj_base.data(), out_base.data(), co_object_of.data(),
-                       co_offset.data(), co_half_length.data(), co_half_width.data(),
-                       ego_half_length.data(), ego_half_width.data()};
+    return BatchLayout{problems,
+                       steps,
+                       TotalEgo(),
+                       TotalCo(),
+                       set_base.data(),
+                       ego_base.data(),
+                       co_base.data(),
+                       pair_base.data(),
+                       obj_base.data(),
+                       ego_obj_base.data(),
+                       out_base.data(),
+                       co_object_of.data(),
+                       co_offset.data(),
+                       co_half_length.data(),
+                       co_half_width.data(),
+                       ego_half_length.data(),
+                       ego_half_width.data()};
   }
 };
 

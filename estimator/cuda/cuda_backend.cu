@@ -1,12 +1,12 @@
 // The CUDA backend: trajectory generation, collision recognition and risk assessment on the
-// device, for one scene or a whole batch of scenes in one set of launches (batch_layout.h), from the same core/ functions as the CPU (one thread per hypothesis, per ego x CO
-// pair, per ego hypothesis; the per-thread bodies are in kernel_bodies.h, tested on the CPU),
-// with no host round trip between modules. Street data processing
-// and hypothesis scoring (tiny) stay on the host (BuildProblem). Buffers are plain cudaMalloc,
-// grown when needed and reused across calls. Poses are stored step-major ([n * count + t]) so
-// that the threads of a warp read neighbouring CO poses. Sums over ego hypotheses run in ego
-// order on the device, like the CPU's, and every CUDA failure becomes a CudaError naming the
-// step.
+// device, for one scene or a whole batch of scenes in one set of launches (batch_layout.h), from
+// the same core/ functions as the CPU (one thread per hypothesis, per ego x CO pair, per ego
+// hypothesis; the per-thread bodies are in kernel_bodies.h, tested on the CPU), with no host round
+// trip between modules. Street data processing and hypothesis scoring (tiny) stay on the host
+// (BuildProblem). Buffers are plain cudaMalloc, grown when needed and reused across calls. Poses
+// are stored step-major ([n * count + t]) so that the threads of a warp read neighbouring CO poses.
+// Sums over ego hypotheses run in ego order on the device, like the CPU's, and every CUDA failure
+// becomes a CudaError naming the step.
 #include <cuda_runtime.h>
 
 #include <algorithm>
@@ -17,9 +17,9 @@
 #include "core/chronological_risk.h"
 #include "core/oriented_box.h"
 #include "core/trajectory_generation.h"
+#include "cuda/batch_layout.h"
 #include "cuda/cuda_backend.h"
 #include "cuda/device.cuh"
-#include "cuda/batch_layout.h"
 #include "cuda/kernel_bodies.h"
 #include "src/risk_assessment.h"
 
@@ -152,10 +152,10 @@ class CudaBackend final : public EstimatorBackend {
     double* by_obj = d_by_obj_.Reserve(ego_obj, "cudaMalloc by object");
     double* out = d_out_.Reserve(h.TotalOut(), "cudaMalloc risk output");
     RiskKernel<<<Blocks(total_ego), kThreads>>>(layout_, d_first_.get(), d_p_co_.get(), w, ego_col,
-                                                 ego_hit, by_step, by_obj);
+                                                ego_hit, by_step, by_obj);
     Check(cudaGetLastError(), "after risk kernel launch");
     ReduceKernel<<<Blocks(h.TotalOut()), kThreads>>>(layout_, h.TotalOut(), d_p_ego_.get(), ego_col,
-                                                      by_step, by_obj, out);
+                                                     by_step, by_obj, out);
     Check(cudaGetLastError(), "after reduction kernel launch");
     std::vector<double> sums, col;
     std::vector<char> hit;
@@ -174,11 +174,14 @@ class CudaBackend final : public EstimatorBackend {
       for (int o = 0; o < n_obj; ++o) r.objects[o].contribution = s[steps + o];
       r.p_collision = s[steps + n_obj];
       r.ego_probability = pb.ego_probability;
-      r.ego_collision_probability.assign(col.begin() + h.ego_base[p], col.begin() + h.ego_base[p + 1]);
-      internal::FillEscapeRoutes(
-          pb, params, std::vector<char>(hit.begin() + h.ego_base[p], hit.begin() + h.ego_base[p + 1]), &r);
+      r.ego_collision_probability.assign(col.begin() + h.ego_base[p],
+                                         col.begin() + h.ego_base[p + 1]);
+      internal::FinishDecisionOutputs(
+          pb, params,
+          std::vector<char>(hit.begin() + h.ego_base[p], hit.begin() + h.ego_base[p + 1]), &r);
       if (keep_pair_matrix) {
-        r.first_collision_step.assign(first.begin() + h.pair_base[p], first.begin() + h.pair_base[p + 1]);
+        r.first_collision_step.assign(first.begin() + h.pair_base[p],
+                                      first.begin() + h.pair_base[p + 1]);
       }
     }
     const double risk_ms = MsSince(t);
@@ -242,12 +245,12 @@ class CudaBackend final : public EstimatorBackend {
     Check(cudaGetLastError(), "after trajectory kernel launch");
     if (ne) {
       TrigKernel<<<Blocks(ne), kThreads>>>(eyaw, ne, d_ec_.Reserve(ne, "cudaMalloc ego cos"),
-                                            d_es_.Reserve(ne, "cudaMalloc ego sin"));
+                                           d_es_.Reserve(ne, "cudaMalloc ego sin"));
       Check(cudaGetLastError(), "after ego trig kernel launch");
     }
     if (nc) {
       TrigKernel<<<Blocks(nc), kThreads>>>(cyaw, nc, d_cc_.Reserve(nc, "cudaMalloc CO cos"),
-                                            d_cs_.Reserve(nc, "cudaMalloc CO sin"));
+                                           d_cs_.Reserve(nc, "cudaMalloc CO sin"));
       Check(cudaGetLastError(), "after CO trig kernel launch");
     }
   }

@@ -6,6 +6,7 @@
 
 #include "core/geometry.h"
 #include "core/one_track.h"
+#include "core/pedestrian_model.h"
 #include "core/profiles.h"
 #include "core/scoring.h"
 #include "core/two_track.h"
@@ -20,6 +21,7 @@ namespace {
 struct LateralSample {
   core::Parabola curve;
   bool counter_traffic{false};
+  int lane{0};  ///< -1 right, 0 own, +1 left
 };
 
 // Lateral samples right to left: neighbour_lane_samples across the right lane, own_lane_samples
@@ -27,15 +29,15 @@ struct LateralSample {
 // over its lane's width (fractions i / (n + 1)).
 std::vector<LateralSample> LateralSamples(const FittedLanes& lanes, const Params& p) {
   std::vector<LateralSample> out;
-  auto add = [&](const std::optional<FittedLane>& lane, int n) {
+  auto add = [&](const std::optional<FittedLane>& lane, int n, int index) {
     if (!lane) return;
     for (int i = 1; i <= n; ++i) {
-      out.push_back({lane->At(static_cast<double>(i) / (n + 1)), lane->counter_traffic});
+      out.push_back({lane->At(static_cast<double>(i) / (n + 1)), lane->counter_traffic, index});
     }
   };
-  add(lanes.right, p.neighbour_lane_samples);
-  add(lanes.own, p.own_lane_samples);
-  add(lanes.left, p.neighbour_lane_samples);
+  add(lanes.right, p.neighbour_lane_samples, -1);
+  add(lanes.own, p.own_lane_samples, 0);
+  add(lanes.left, p.neighbour_lane_samples, 1);
   return out;
 }
 
@@ -45,33 +47,59 @@ double ReferenceDistance(double v0, double a0, double t) {
   return v0 * t + 0.5 * a0 * t * t;
 }
 
+bool Naturalistic(const Params& p) { return p.scoring == Params::Scoring::kNaturalistic; }
+
+// Naturalistic n_acc of an acceleration deviation: Gaussian, wider for braking.
+double AccelScore(const Params& p, double deviation) {
+  const double z =
+      deviation / (deviation < 0.0 ? p.decel_score_sigma_mps2 : p.accel_score_sigma_mps2);
+  return core::GaussianScore(z * z);
+}
+
 core::VehicleParams VehicleModelParams(double length, double width, std::optional<double> height,
                                        const Params& p) {
   core::VehicleParams vp = VehicleParamsFor(ClassifyVehicle(length, width, height), length, width);
   vp.friction = p.friction;
   vp.kinematic_below_mps = p.kinematic_below_mps;
+  vp.friction_limited = p.friction_limited_lateral;
   return vp;
 }
 
+// Pose and motion state; for vehicles after h->vehicle is set.
 void SetPose(const ObjectState& s, double length, double width, core::HypothesisSet* h) {
   h->X_WL = core::Pose2{s.x_m, s.y_m, s.yaw_rad};
   h->v0 = s.speed_mps;
   h->beta0 = s.sideslip_rad;
   h->yaw_rate0 = s.yaw_rate_radps;
+  // A vehicle's measured state must be drivable too: a yaw rate whose lateral acceleration v r
+  // exceeds the friction limit is a measurement artefact (SUMO's headings jump on junction
+  // lanes), limited to mu g / v.
+  if (h->vehicle.friction_limited && h->v0 > 0.0) {
+    const double limit = h->vehicle.friction * core::kGravity / h->v0;
+    h->yaw_rate0 = core::Clamp(h->yaw_rate0, -limit, limit);
+  }
   h->accel0 = s.accel_mps2;
   h->half_length = 0.5 * length;
   h->half_width = 0.5 * width;
 }
 
-// Fills the lateral part of a vehicle's hypothesis set and returns one score factor per path:
-// d_str / (c_com * c_cou) split as {d_str, c_com * c_cou}.
+// The path part of the scores: d_path (the lateral part of d_str) and c_com * c_cou.
 struct PathScore {
-  double d_str{1.0};
+  double d_path{1.0};
   double penalty{1.0};
 };
 
+// The profile part: n_acc, and d_lon, the longitudinal part of d_str (naturalistic scoring:
+// how far the profile takes the object from the reference trajectory along its way).
+struct ProfileScore {
+  double n_acc{1.0};
+  double d_lon{1.0};
+};
+
+// Fills the lateral part of a vehicle's hypothesis set and scores its paths; `lanes` of the
+// ego's lane samples (-1, 0, +1) when asked.
 std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool combine,
-                                core::HypothesisSet* h) {
+                                core::HypothesisSet* h, std::vector<int>* sample_lanes = nullptr) {
   const std::vector<LateralSample> samples = LateralSamples(lanes, p);
   const int n_lat = static_cast<int>(samples.size());
   const int n_inst = static_cast<int>(p.path_sample_times_s.size());
@@ -81,6 +109,10 @@ std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool 
   for (int k = 0; k < n_inst; ++k) {
     h->instant_time[k] = p.path_sample_times_s[k];
     for (int l = 0; l < n_lat; ++l) h->section[k][l] = samples[l].curve;
+  }
+  if (sample_lanes) {
+    sample_lanes->clear();
+    for (const LateralSample& ls : samples) sample_lanes->push_back(ls.lane);
   }
   int n_paths = n_lat;
   if (combine) {
@@ -92,6 +124,7 @@ std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool 
   // Offsets of each sample from the own lane's centre where the reference trajectory is at
   // each sample instant.
   const core::Parabola centre = lanes.own->Centre();
+  h->reference_path = centre;
   std::vector<double> offset(static_cast<size_t>(n_inst) * n_lat);
   for (int k = 0; k < n_inst; ++k) {
     const double x = ReferenceDistance(h->v0, h->accel0, p.path_sample_times_s[k]);
@@ -101,31 +134,48 @@ std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool 
   }
   std::vector<PathScore> scores(n_paths);
   for (int path = 0; path < n_paths; ++path) {
-    double mean = 0.0;
-    int changes = 0;
+    double mean = 0.0, mean_z2 = 0.0;
+    int changes = 0, crossings = 0, lane = 0;
     bool counter = false;
     for (int k = 0; k < n_inst; ++k) {
       const int l = core::SectionOfPath(*h, path, k);
-      mean += offset[k * n_lat + l];
+      const double off = offset[k * n_lat + l];
+      mean += off;
+      mean_z2 += (off / p.lateral_offset_sigma_m) * (off / p.lateral_offset_sigma_m);
       counter = counter || samples[l].counter_traffic;
       if (k > 0 && l != core::SectionOfPath(*h, path, k - 1)) ++changes;
+      crossings += std::abs(samples[l].lane - lane);
+      lane = samples[l].lane;
     }
     mean /= n_inst;
-    scores[path].d_str = core::DeviationScore(mean, p.path_score_scale_m);
-    scores[path].penalty =
-        (1.0 + p.complexity_penalty * changes) * (counter ? p.counter_traffic_penalty : 1.0);
+    mean_z2 /= n_inst;
+    if (Naturalistic(p)) {
+      scores[path].d_path = core::GaussianScore(mean_z2);
+      scores[path].penalty = std::pow(p.lane_crossing_penalty, crossings) *
+                             (counter ? p.counter_traffic_penalty : 1.0);
+    } else {
+      scores[path].d_path = core::DeviationScore(mean, p.path_score_scale_m);
+      scores[path].penalty =
+          (1.0 + p.complexity_penalty * changes) * (counter ? p.counter_traffic_penalty : 1.0);
+    }
   }
   return scores;
 }
 
-// Scores every (profile, path) hypothesis and L1-normalises them into probabilities.
-void AppendProbabilities(const std::vector<double>& n_acc, const std::vector<PathScore>& paths,
-                         const Params& p, std::vector<double>* out) {
+// Scores every (profile, path) hypothesis and L1-normalises them into probabilities:
+// n_h = (w_acc n_acc + w_str d_str) / (c_com c_cou), d_str = d_path (paper-literal) or
+// d_path * d_lon (naturalistic: the position deviation along and across the road).
+void AppendProbabilities(const std::vector<ProfileScore>& profiles,
+                         const std::vector<PathScore>& paths, const Params& p,
+                         std::vector<double>* out) {
   const size_t first = out->size();
   double sum = 0.0;
-  for (double na : n_acc) {
-    for (const PathScore& ps : paths) {
-      const double score = core::HypothesisScore(p.w_acc, na, p.w_str, ps.d_str, ps.penalty, 1.0);
+  const bool naturalistic = Naturalistic(p);
+  for (const ProfileScore& ps : profiles) {
+    for (const PathScore& path : paths) {
+      const double d_str = naturalistic ? path.d_path * ps.d_lon : path.d_path;
+      const double score =
+          core::HypothesisScore(p.w_acc, ps.n_acc, p.w_str, d_str, path.penalty, 1.0);
       out->push_back(score);
       sum += score;
     }
@@ -133,19 +183,177 @@ void AppendProbabilities(const std::vector<double>& n_acc, const std::vector<Pat
   for (size_t i = first; i < out->size(); ++i) (*out)[i] /= sum;
 }
 
-void SetVehicleProfiles(const Params& p, core::HypothesisSet* h, std::vector<double>* n_acc) {
+// The profile targets in acceleration (m/s^2): the paper's samples (minimum, negative spread,
+// zero, maximum), with the one nearest the current acceleration replaced by it when asked
+// (the reference hypothesis). Returns the index of the reference profile, -1 without one.
+int ProfileAccelerations(int n, double lo, double hi, double current, bool include_current,
+                         bool equally_spaced, std::vector<double>* out) {
+  out->resize(n);
+  for (int k = 0; k < n; ++k) {
+    (*out)[k] = equally_spaced ? core::EquallySpaced(k, n, lo, hi)
+                               : core::VehicleProfileTarget(k, n, lo, hi);
+  }
+  if (!include_current) return -1;
+  const double a = core::Clamp(current, lo, hi);
+  int nearest = 1;
+  for (int k = 2; k < n - 1; ++k) {
+    if (std::fabs((*out)[k] - a) < std::fabs((*out)[nearest] - a)) nearest = k;
+  }
+  (*out)[nearest] = a;
+  return nearest;
+}
+
+// Distance covered by each sample instant under an acceleration profile (1-D: the profile's
+// latency and ramp, the drive limit, never reversing; pedestrians within their speed limit),
+// stepped as the motion models step it. `scale` turns profile values into m/s^2.
+std::vector<double> ProfileDistances(const core::HypothesisSet& h, double target, double scale,
+                                     const Params& p, bool pedestrian) {
+  const double tau = p.step_s;
+  const int steps = p.TimeSteps();
+  std::vector<double> at(p.path_sample_times_s.size(), 0.0);
+  std::vector<int> step_of(at.size());
+  for (size_t i = 0; i < at.size(); ++i) {
+    step_of[i] = static_cast<int>(std::llround(p.path_sample_times_s[i] / tau));
+  }
+  double x = 0.0, v = pedestrian ? core::Clamp(h.v0, 0.0, h.max_speed) : h.v0;
+  for (int n = 0; n < steps; ++n) {
+    const double t = n * tau;
+    if (pedestrian) {
+      double py = 0.0;
+      core::PedestrianStep(0.0, target, h.max_speed, tau, &x, &py, &v);
+    } else {
+      double a = scale * core::RampedValue(t, h.profile_start, target, h.latency, h.rate);
+      if (h.power_limited && a > 0.0) a = core::Min(a, core::DriveAccelLimit(h, v));
+      a = core::NonReversingAccel(v, a, tau);
+      x += v * tau + 0.5 * a * tau * tau;
+      v = core::Max(0.0, v + a * tau);
+    }
+    for (size_t i = 0; i < at.size(); ++i) {
+      if (step_of[i] == n + 1) at[i] = x;
+    }
+  }
+  return at;
+}
+
+// d_lon of every profile: exp(-mean_i (dx_i / sigma_x(t_i))^2 / 2), dx_i the distance the
+// profile gains or loses on the reference profile by sample instant t_i. For vehicles,
+// sigma_x(t) is what a profile one sigma_a off the reference gains or loses by then, through
+// the same latency, ramp and drive limit (so d_lon measures the same deviation as n_acc, in
+// distance: what a stop or the power limit make of it); for pedestrians sigma_v t, the spread
+// of walking speeds.
+void SetLongitudinalScores(const core::HypothesisSet& h, int reference, double scale,
+                           const Params& p, bool pedestrian, std::vector<ProfileScore>* out) {
+  if (reference < 0) return;
+  const double ref_target = h.profile_target[reference];
+  const std::vector<double> ref = ProfileDistances(h, ref_target, scale, p, pedestrian);
+  std::vector<double> slower, faster;
+  if (!pedestrian) {
+    slower = ProfileDistances(h, ref_target - p.decel_score_sigma_mps2 / scale, scale, p, false);
+    faster = ProfileDistances(h, ref_target + p.accel_score_sigma_mps2 / scale, scale, p, false);
+  }
+  constexpr double kMinSigma = 0.01;  // m: a stopped vehicle cannot lose distance
+  for (int k = 0; k < h.n_profiles; ++k) {
+    const std::vector<double> d = ProfileDistances(h, h.profile_target[k], scale, p, pedestrian);
+    double z2 = 0.0;
+    for (size_t i = 0; i < d.size(); ++i) {
+      const double t = p.path_sample_times_s[i];
+      double sigma = p.pedestrian_speed_sigma_mps * t;
+      if (!pedestrian) sigma = std::fabs((d[i] < ref[i] ? slower[i] : faster[i]) - ref[i]);
+      sigma = core::Max(sigma, kMinSigma);
+      z2 += ((d[i] - ref[i]) / sigma) * ((d[i] - ref[i]) / sigma);
+    }
+    (*out)[k].d_lon = core::GaussianScore(z2 / static_cast<double>(d.size()));
+  }
+}
+
+// The longitudinal part of a vehicle's hypothesis set (the ego: two-track, driven by slip or
+// by tyre force demand; others: one-track accelerations) and its profile scores. `accel` gets
+// each profile's target acceleration and `slip` its slip (the ego's, for reports).
+std::vector<ProfileScore> SetVehicleProfiles(const Params& p, core::HypothesisSet* h,
+                                             std::vector<double>* accel = nullptr,
+                                             std::vector<double>* slip = nullptr) {
   h->n_profiles = p.profiles;
   h->latency = p.latency_s;
+  h->steer_latency = p.steer_latency_s;
+  h->power_limited = p.power_limited_drive;
+  const double mu_g = h->vehicle.friction * core::kGravity;
+  h->drive_traction = p.drive_traction_share * mu_g;
   const bool ego = h->model == core::MotionModelKind::kTwoTrack;
-  const double lo = ego ? p.ego_slip_min : p.vehicle_accel_min_mps2;
-  const double hi = ego ? p.ego_slip_max : p.vehicle_accel_max_mps2;
-  h->profile_start = ego ? core::SlipFromAccel(h->vehicle, h->accel0) : h->accel0;
-  h->rate = ego ? p.ego_slip_max * p.jerk_mps3 / p.vehicle_accel_max_mps2 : p.jerk_mps3;
-  const double scale = p.accel_score_scale * std::fmax(std::fabs(lo), std::fabs(hi));
-  for (int k = 0; k < p.profiles; ++k) {
-    h->profile_target[k] = core::VehicleProfileTarget(k, p.profiles, lo, hi);
-    n_acc->push_back(core::DeviationScore(h->profile_target[k] - h->profile_start, scale));
+  std::vector<ProfileScore> scores(p.profiles);
+  std::vector<double> a;
+  int reference =
+      ProfileAccelerations(p.profiles, p.vehicle_accel_min_mps2, p.vehicle_accel_max_mps2,
+                           h->accel0, p.profiles_include_current_accel, false, &a);
+  const double current = core::Clamp(h->accel0, p.vehicle_accel_min_mps2, p.vehicle_accel_max_mps2);
+  double scale = 1.0;  // profile value -> m/s^2
+  if (ego && !p.ego_profiles_in_accel) {
+    // Paper: longitudinal slip, equally spaced as the accelerations are; no reference profile.
+    reference = -1;
+    std::vector<double> s_targets;
+    ProfileAccelerations(p.profiles, p.ego_slip_min, p.ego_slip_max, 0.0, false, false, &s_targets);
+    h->profile_start = core::SlipFromAccel(h->vehicle, h->accel0);
+    h->rate = p.ego_slip_max * p.jerk_mps3 / p.vehicle_accel_max_mps2;
+    const double range =
+        p.accel_score_scale * std::fmax(std::fabs(p.ego_slip_min), std::fabs(p.ego_slip_max));
+    for (int k = 0; k < p.profiles; ++k) {
+      h->profile_target[k] = s_targets[k];
+      a[k] = core::AccelFromSlip(h->vehicle, s_targets[k]);
+      scores[k].n_acc = core::DeviationScore(h->profile_target[k] - h->profile_start, range);
+    }
+    if (Naturalistic(p)) {
+      for (int k = 0; k < p.profiles; ++k) {
+        scores[k].n_acc = AccelScore(p, a[k] - current);
+      }
+    }
+  } else {
+    if (ego) {
+      // Tyre force demand a / (mu g) on the four wheels, ramped in acceleration.
+      h->force_profiles = true;
+      scale = mu_g;
+      h->profile_start = core::Clamp(h->accel0 / mu_g, -1.0, 1.0);
+      h->rate = p.jerk_mps3 / mu_g;
+      for (int k = 0; k < p.profiles; ++k) {
+        h->profile_target[k] =
+            k == reference ? h->profile_start : core::Clamp(a[k] / mu_g, -1.0, 1.0);
+      }
+    } else {
+      h->profile_start = h->accel0;
+      h->rate = p.jerk_mps3;
+      for (int k = 0; k < p.profiles; ++k) h->profile_target[k] = a[k];
+    }
+    const double range = p.accel_score_scale * std::fmax(std::fabs(p.vehicle_accel_min_mps2),
+                                                         std::fabs(p.vehicle_accel_max_mps2));
+    for (int k = 0; k < p.profiles; ++k) {
+      if (Naturalistic(p)) {
+        scores[k].n_acc = AccelScore(p, a[k] - current);
+      } else {
+        scores[k].n_acc = core::DeviationScore(h->profile_target[k] - h->profile_start, range);
+      }
+    }
   }
+  if (Naturalistic(p)) SetLongitudinalScores(*h, reference, scale, p, false, &scores);
+  if (accel) *accel = a;
+  if (slip) {
+    slip->resize(p.profiles);
+    for (int k = 0; k < p.profiles; ++k) {
+      (*slip)[k] = h->force_profiles ? core::SlipFromAccel(h->vehicle, a[k]) : h->profile_target[k];
+    }
+  }
+  return scores;
+}
+
+// Ego lane dividers (ego frame) that the segment from (x0, y0) to (x1, y1) crosses.
+int DividerCrossings(const FittedLanes& lanes, double x0, double y0, double x1, double y1) {
+  std::vector<const core::Parabola*> dividers;
+  if (lanes.right) dividers.push_back(&lanes.right->right);
+  dividers.push_back(&lanes.own->right);
+  dividers.push_back(&lanes.own->left);
+  if (lanes.left) dividers.push_back(&lanes.left->left);
+  int n = 0;
+  for (const core::Parabola* d : dividers) {
+    if ((y0 - d->Eval(x0) > 0.0) != (y1 - d->Eval(x1) > 0.0)) ++n;
+  }
+  return n;
 }
 
 }  // namespace
@@ -174,14 +382,20 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   {
     core::HypothesisSet& h = pb.ego;
     h.model = core::MotionModelKind::kTwoTrack;
-    SetPose(scene.ego.state, scene.ego.length_m, scene.ego.width_m, &h);
     h.vehicle =
         VehicleModelParams(scene.ego.length_m, scene.ego.width_m, scene.ego.height_m, params);
+    SetPose(scene.ego.state, scene.ego.length_m, scene.ego.width_m, &h);
     h.seam_speed = core::SeamSpeed(h.vehicle, params.step_s, params.euler_stability_factor);
-    std::vector<double> n_acc;
-    SetVehicleProfiles(params, &h, &n_acc);
-    const std::vector<PathScore> paths = SetPaths(ego_fitted, params, /*combine=*/true, &h);
-    AppendProbabilities(n_acc, paths, params, &pb.ego_probability);
+    const std::vector<ProfileScore> profiles =
+        SetVehicleProfiles(params, &h, &pb.ego_profile_accel, &pb.ego_profile_slip);
+    const std::vector<PathScore> paths =
+        SetPaths(ego_fitted, params, /*combine=*/true, &h, &pb.ego_sample_lane);
+    AppendProbabilities(profiles, paths, params, &pb.ego_probability);
+    pb.ego_lane_centre = ego_fitted.own->Centre();
+    for (size_t i = 1; i < pb.ego_probability.size(); ++i) {
+      if (pb.ego_probability[i] > pb.ego_probability[pb.ego_reference_trajectory])
+        pb.ego_reference_trajectory = static_cast<int>(i);
+    }
   }
 
   const core::Pose2 X_WE{scene.ego.state.x_m, scene.ego.state.y_m, scene.ego.state.yaw_rad};
@@ -192,8 +406,8 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     const std::string where = "scene.vehicles[" + std::to_string(i) + "]";
     core::HypothesisSet h;
     h.model = core::MotionModelKind::kOneTrack;
-    SetPose(v.state, v.length_m, v.width_m, &h);
     h.vehicle = VehicleModelParams(v.length_m, v.width_m, v.height_m, params);
+    SetPose(v.state, v.length_m, v.width_m, &h);
     h.seam_speed = core::SeamSpeed(h.vehicle, params.step_s, params.euler_stability_factor);
     ObjectResult info;
     info.id = v.id;
@@ -212,10 +426,9 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     LaneSet lanes = v.lanes ? *v.lanes : EgoLanesSeenBy(ego_lanes, X_EV, lane);
     if (!lanes.own) lanes.own = VirtualLane(v.state, params.virtual_lane_width_m);
     const FittedLanes fitted = FitLanes(lanes, where + ".lanes");
-    std::vector<double> n_acc;
-    SetVehicleProfiles(params, &h, &n_acc);
+    const std::vector<ProfileScore> profiles = SetVehicleProfiles(params, &h);
     const std::vector<PathScore> paths = SetPaths(fitted, params, /*combine=*/false, &h);
-    AppendProbabilities(n_acc, paths, params, &pb.co_probability);
+    AppendProbabilities(profiles, paths, params, &pb.co_probability);
     info.first_trajectory = offset;
     info.trajectories = h.Trajectories();
     offset += info.trajectories;
@@ -231,22 +444,51 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     h.max_speed = params.pedestrian_max_speed_mps;
     h.n_profiles = params.profiles;
     h.n_paths = params.pedestrian_headings;
+    h.profile_start = h.accel0;
+    std::vector<double> a;
+    const int reference = ProfileAccelerations(
+        h.n_profiles, params.pedestrian_accel_min_mps2, params.pedestrian_accel_max_mps2, h.accel0,
+        params.profiles_include_current_accel, /*equally_spaced=*/true, &a);
     const double scale =
         params.accel_score_scale * std::fmax(std::fabs(params.pedestrian_accel_min_mps2),
                                              std::fabs(params.pedestrian_accel_max_mps2));
-    std::vector<double> n_acc;
+    std::vector<ProfileScore> profiles(h.n_profiles);
+    const double current =
+        core::Clamp(h.accel0, params.pedestrian_accel_min_mps2, params.pedestrian_accel_max_mps2);
     for (int k = 0; k < h.n_profiles; ++k) {
-      h.profile_target[k] = core::EquallySpaced(k, h.n_profiles, params.pedestrian_accel_min_mps2,
-                                                params.pedestrian_accel_max_mps2);
-      n_acc.push_back(core::DeviationScore(h.profile_target[k] - h.accel0, scale));
+      h.profile_target[k] = a[k];
+      if (Naturalistic(params)) {
+        profiles[k].n_acc = AccelScore(params, a[k] - current);
+      } else {
+        profiles[k].n_acc = core::DeviationScore(h.profile_target[k] - h.accel0, scale);
+      }
     }
+    if (Naturalistic(params)) SetLongitudinalScores(h, reference, 1.0, params, true, &profiles);
+    // Headings; naturalistic c_com: the ego lane dividers each heading line crosses within the
+    // pedestrian's current speed x horizon, against the straight-on heading's.
+    double px, py;
+    core::WorldToLocal(X_WE, ped.state.x_m, ped.state.y_m, &px, &py);
+    const double reach = h.v0 * params.horizon_s;
+    auto crossings = [&](double heading_W) {
+      const double d = heading_W - X_WE.yaw;
+      return DividerCrossings(ego_fitted, px, py, px + reach * std::cos(d),
+                              py + reach * std::sin(d));
+    };
+    const int straight_on = crossings(ped.state.yaw_rad);
     std::vector<PathScore> headings(h.n_paths);
     for (int l = 0; l < h.n_paths; ++l) {
       const double turn = core::WrapAngle(2.0 * core::kPi * l / h.n_paths);
       h.heading[l] = ped.state.yaw_rad + turn;
-      headings[l].d_str = core::DeviationScore(turn, params.heading_score_scale_rad);
+      if (Naturalistic(params)) {
+        const double z = turn / params.heading_score_sigma_rad;
+        headings[l].d_path = core::GaussianScore(z * z);
+        headings[l].penalty =
+            std::pow(params.lane_crossing_penalty, std::abs(crossings(h.heading[l]) - straight_on));
+      } else {
+        headings[l].d_path = core::DeviationScore(turn, params.heading_score_scale_rad);
+      }
     }
-    AppendProbabilities(n_acc, headings, params, &pb.co_probability);
+    AppendProbabilities(profiles, headings, params, &pb.co_probability);
     ObjectResult info;
     info.id = ped.id;
     info.kind = ObjectKind::kPedestrian;

@@ -27,6 +27,15 @@ struct Problem {
   std::vector<double> co_probability;
   /** Per CO: id, kind, lane association (contribution filled by the risk assessment). */
   std::vector<ObjectResult> objects;
+  /** The ego's profiles as a driver reads them: target acceleration (m/s^2) and longitudinal
+   *  slip of each; the ego lane (-1 right, 0 own, +1 left) of each lateral sample; its own
+   *  lane's centre in its local frame; its most probable hypothesis (the first maximum of
+   *  ego_probability: the reference). */
+  std::vector<double> ego_profile_accel;
+  std::vector<double> ego_profile_slip;
+  std::vector<int> ego_sample_lane;
+  core::Parabola ego_lane_centre;
+  int ego_reference_trajectory{0};
   WorkCounts counts;
 
   int EgoTrajectories() const { return counts.ego_trajectories; }

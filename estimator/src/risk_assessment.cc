@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/chronological_risk.h"
-#include "core/two_track.h"
+#include "core/trajectory_generation.h"
 #include "src/parallel_for.h"
 
 namespace criticality::internal {
@@ -55,34 +55,63 @@ void AssessRisk(const Problem& pb, const Params& params, const std::int16_t* fir
   result->ego_probability = pb.ego_probability;
   result->ego_collision_probability = ego_col;
 
-  FillEscapeRoutes(pb, params, ego_hit, result);
+  FinishDecisionOutputs(pb, params, ego_hit, result);
 }
 
-void FillEscapeRoutes(const Problem& pb, const Params& params, const std::vector<char>& ego_hit,
-                      Result* result) {
+void FinishDecisionOutputs(const Problem& pb, const Params& params,
+                           const std::vector<char>& ego_hit, Result* result) {
   const int n_ego = pb.EgoTrajectories();
-  // Ego hypotheses that collide with no CO hypothesis, most probable first.
-  std::vector<int> free;
-  for (int i = 0; i < n_ego; ++i) {
-    if (!ego_hit[i]) free.push_back(i);
-  }
-  result->collision_free_ego_trajectories = static_cast<int>(free.size());
-  std::stable_sort(free.begin(), free.end(),
-                   [&](int a, int b) { return pb.ego_probability[a] > pb.ego_probability[b]; });
-  if (static_cast<int>(free.size()) > params.max_escape_routes)
-    free.resize(params.max_escape_routes);
+  const std::vector<double>& col = result->ego_collision_probability;
+  result->reference_ego_trajectory = pb.ego_reference_trajectory;
+  result->p_reference = n_ego > 0 ? col[pb.ego_reference_trajectory] : 0.0;
+  result->unavoidability = n_ego > 0 ? *std::min_element(col.begin(), col.end()) : 0.0;
+  result->collision_free_ego_trajectories =
+      static_cast<int>(std::count(ego_hit.begin(), ego_hit.end(), char{0}));
+
+  // Escape routes: lowest collision probability first, then most probable, then by index.
+  std::vector<int> order(n_ego);
+  for (int i = 0; i < n_ego; ++i) order[i] = i;
+  const size_t keep = std::min<size_t>(order.size(), static_cast<size_t>(params.max_escape_routes));
+  std::partial_sort(order.begin(), order.begin() + keep, order.end(), [&](int a, int b) {
+    if (col[a] != col[b]) return col[a] < col[b];
+    if (pb.ego_probability[a] != pb.ego_probability[b])
+      return pb.ego_probability[a] > pb.ego_probability[b];
+    return a < b;
+  });
   result->escape_routes.clear();
-  for (int i : free) {
-    EscapeRoute r;
-    r.ego_trajectory = i;
-    r.profile = i / pb.ego.n_paths;
-    r.profile_slip = pb.ego.profile_target[r.profile];
-    r.profile_accel_mps2 = core::AccelFromSlip(pb.ego.vehicle, r.profile_slip);
+  const int steps = pb.Steps();
+  std::vector<double> x(steps), y(steps), yaw(steps), steer(steps);
+  std::vector<core::MotionState> state(steps);
+  for (size_t r = 0; r < keep; ++r) {
+    const int i = order[r];
+    EscapeRoute e;
+    e.ego_trajectory = i;
+    e.profile = i / pb.ego.n_paths;
+    e.profile_slip = pb.ego_profile_slip[e.profile];
+    e.profile_accel_mps2 = pb.ego_profile_accel[e.profile];
     for (int k = 0; k < pb.ego.n_instants; ++k) {
-      r.sections.push_back(core::SectionOfPath(pb.ego, i % pb.ego.n_paths, k));
+      const int section = core::SectionOfPath(pb.ego, i % pb.ego.n_paths, k);
+      e.sections.push_back(section);
+      e.target_lanes.push_back(pb.ego_sample_lane[section]);
     }
-    r.probability = pb.ego_probability[i];
-    result->escape_routes.push_back(std::move(r));
+    e.probability = pb.ego_probability[i];
+    e.collision_probability = col[i];
+    core::StepTrace trace{state.data(), steer.data()};
+    core::SimulateHypothesis(pb.ego, pb.sim, e.profile, i % pb.ego.n_paths, x.data(), y.data(),
+                             yaw.data(), 1, &trace);
+    for (int n = 0; n < steps; ++n) {
+      const core::MotionState& s = state[n];
+      e.time_s.push_back((n + 1) * pb.sim.tau);
+      e.speed_mps.push_back(s.v);
+      e.accel_mps2.push_back(s.ax);
+      e.lateral_accel_mps2.push_back(s.ay);
+      e.steer_rad.push_back(steer[n]);
+      e.lateral_offset_m.push_back(s.y - pb.ego_lane_centre.Eval(s.x));
+    }
+    e.x_m = x;
+    e.y_m = y;
+    e.yaw_rad = yaw;
+    result->escape_routes.push_back(std::move(e));
   }
 }
 

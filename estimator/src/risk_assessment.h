@@ -17,9 +17,11 @@ namespace criticality::internal {
 void AssessRisk(const Problem& problem, const Params& params, const std::int16_t* first_step,
                 int threads, Result* result);
 
-/** Escape routes (collision-free ego hypotheses, most probable first) and their count, from
- *  which ego hypotheses collide with any CO hypothesis. */
-void FillEscapeRoutes(const Problem& problem, const Params& params,
-                      const std::vector<char>& ego_hit, Result* result);
+/** The outputs for decisions, from result->ego_collision_probability (every backend fills it)
+ *  and which ego hypotheses collide with any CO hypothesis: p_reference, unavoidability, the
+ *  count of collision-free ego hypotheses and the escape routes, each re-simulated on the host
+ *  to record its manoeuvre over time. */
+void FinishDecisionOutputs(const Problem& problem, const Params& params,
+                           const std::vector<char>& ego_hit, Result* result);
 
 }  // namespace criticality::internal

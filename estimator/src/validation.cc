@@ -130,6 +130,21 @@ void ValidateParams(const Params& p) {
   if (p.w_str < 0.0) Fail("params.w_str", p.w_str, "must be >= 0");
   if (!(p.w_acc + p.w_str > 0.0))
     Fail("params.w_acc + params.w_str", p.w_acc + p.w_str, "must be > 0");
+  RequireFinite("params.steer_latency_s", p.steer_latency_s);
+  if (p.steer_latency_s < 0.0) Fail("params.steer_latency_s", p.steer_latency_s, "must be >= 0");
+  RequirePositive("params.drive_traction_share", p.drive_traction_share);
+  if (p.drive_traction_share > 1.0)
+    Fail("params.drive_traction_share", p.drive_traction_share, "must be <= 1");
+  if (p.scoring != Params::Scoring::kPaperLiteral && p.scoring != Params::Scoring::kNaturalistic)
+    Fail("params.scoring", static_cast<int>(p.scoring), "must be kPaperLiteral or kNaturalistic");
+  RequirePositive("params.accel_score_sigma_mps2", p.accel_score_sigma_mps2);
+  RequirePositive("params.decel_score_sigma_mps2", p.decel_score_sigma_mps2);
+  RequirePositive("params.lateral_offset_sigma_m", p.lateral_offset_sigma_m);
+  RequirePositive("params.heading_score_sigma_rad", p.heading_score_sigma_rad);
+  RequirePositive("params.pedestrian_speed_sigma_mps", p.pedestrian_speed_sigma_mps);
+  RequireFinite("params.lane_crossing_penalty", p.lane_crossing_penalty);
+  if (p.lane_crossing_penalty < 1.0)
+    Fail("params.lane_crossing_penalty", p.lane_crossing_penalty, "must be >= 1");
   RequirePositive("params.accel_score_scale", p.accel_score_scale);
   RequirePositive("params.path_score_scale_m", p.path_score_scale_m);
   RequirePositive("params.heading_score_scale_rad", p.heading_score_scale_rad);
@@ -143,6 +158,28 @@ void ValidateParams(const Params& p) {
     Fail("params.max_escape_routes", p.max_escape_routes, "must be >= 0");
   if (p.max_memory_bytes == 0) Fail("params.max_memory_bytes", p.max_memory_bytes, "must be > 0");
 }
+
+Params ParamsPreset(const std::string& name) {
+  Params p;
+  if (name == "default") return p;
+  if (name == "paper-literal") {
+    p.steer_latency_s = 0.0;
+    p.friction_limited_lateral = false;
+    p.power_limited_drive = false;
+    p.ego_profiles_in_accel = false;
+    p.profiles_include_current_accel = false;
+    p.scoring = Params::Scoring::kPaperLiteral;
+    p.w_acc = 1.0;
+    p.w_str = 1.0;
+    p.counter_traffic_penalty = 4.0;
+    return p;
+  }
+  std::string names;
+  for (const std::string& n : ParamsPresetNames()) names += (names.empty() ? "" : " or ") + n;
+  throw InputError("preset = '" + name + "': unknown; use " + names);
+}
+
+std::vector<std::string> ParamsPresetNames() { return {"default", "paper-literal"}; }
 
 namespace internal {
 

@@ -43,28 +43,29 @@ namespace {
 struct ClassData {
   double mass_kg;
   double yaw_inertia_kgm2;
+  double power_per_mass_wpkg;  ///< driving power at the wheels per unit mass
 };
 
 ClassData DataOf(VehicleClass c) {
   switch (c) {
     case VehicleClass::kQuadricycle:
-      return {450.0, 400.0};
+      return {450.0, 400.0, 30.0};
     case VehicleClass::kSupermini:
-      return {1100.0, 1500.0};
+      return {1100.0, 1500.0, 45.0};
     case VehicleClass::kSmallFamily:
-      return {1300.0, 1900.0};
+      return {1300.0, 1900.0, 58.0};
     case VehicleClass::kLargeFamily:
-      return {1500.0, 2500.0};
+      return {1500.0, 2500.0, 66.0};
     case VehicleClass::kExecutive:
-      return {1750.0, 3100.0};
+      return {1750.0, 3100.0, 77.0};
     case VehicleClass::kMultiPurpose:
-      return {1900.0, 3400.0};
+      return {1900.0, 3400.0, 52.0};
     case VehicleClass::kOffRoader:
-      return {2200.0, 4000.0};
+      return {2200.0, 4000.0, 57.0};
     case VehicleClass::kCargo:
-      return {3000.0, 4500.0};
+      return {3000.0, 4500.0, 30.0};
   }
-  return {1500.0, 2500.0};
+  return {1500.0, 2500.0, 60.0};
 }
 }  // namespace
 
@@ -73,6 +74,7 @@ core::VehicleParams VehicleParamsFor(VehicleClass c, double length_m, double wid
   core::VehicleParams p;
   p.mass_kg = d.mass_kg;
   p.yaw_inertia_kgm2 = d.yaw_inertia_kgm2;
+  p.power_per_mass_wpkg = d.power_per_mass_wpkg;
   const double wheelbase = std::clamp(0.6 * length_m, 1.8, 4.0);
   p.lf_m = 0.45 * wheelbase;
   p.lr_m = 0.55 * wheelbase;

@@ -1,7 +1,15 @@
 // Every fast path is checked against the plain reference on the same inputs: the CPU fast path
-// must give the same pair matrix (colliding pairs and first-collision steps) and p_cra.
+// must give the same pair matrix (colliding pairs and first-collision steps), hence the same
+// risk outputs, bit for bit, on every scene family (S1, S2, the seeded random family, the
+// discrimination scenes, crowded scenes without collisions), with the default parameters, the
+// paper-literal ones and parameters that move the fast path's step partition (odd sampling
+// instants, four instants, another step, a shorter horizon).
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
+#include "bench/discrimination_scenes.h"
 #include "bench/paper_scenes.h"
 #include "criticality/estimator.h"
 #include "test_scenes.h"
@@ -9,14 +17,14 @@
 namespace criticality {
 namespace {
 
-// Returns the number of colliding pairs, so callers can check their scenes exercise collisions.
-size_t ExpectSameResult(const Scene& scene, const std::string& what) {
+// Returns the number of colliding pairs, so callers can check what their scenes exercise.
+size_t ExpectSameResult(const Scene& scene, const Params& params, const std::string& what) {
   EstimatorOptions ref_opt, cpu_opt;
   ref_opt.backend = Backend::kReference;
   ref_opt.keep_pair_matrix = cpu_opt.keep_pair_matrix = true;
   cpu_opt.backend = Backend::kCpu;
   cpu_opt.threads = 2;
-  Estimator reference(Params{}, ref_opt), cpu(Params{}, cpu_opt);
+  Estimator reference(params, ref_opt), cpu(params, cpu_opt);
   const Result a = reference.Estimate(scene);
   const Result b = cpu.Estimate(scene);
   EXPECT_EQ(a.first_collision_step.size(), b.first_collision_step.size()) << what;
@@ -26,30 +34,132 @@ size_t ExpectSameResult(const Scene& scene, const std::string& what) {
     differing += a.first_collision_step[k] != b.first_collision_step[k];
   }
   EXPECT_EQ(differing, 0u) << what;
-  EXPECT_NEAR(a.p_collision, b.p_collision, 1e-9) << what;
+  // Same pair matrix, same host risk code: the outputs are bit-identical.
+  EXPECT_EQ(a.p_collision, b.p_collision) << what;
+  EXPECT_EQ(a.p_reference, b.p_reference) << what;
+  EXPECT_EQ(a.unavoidability, b.unavoidability) << what;
   EXPECT_EQ(a.collision_free_ego_trajectories, b.collision_free_ego_trajectories) << what;
+  EXPECT_EQ(a.first_collision_pmf, b.first_collision_pmf) << what;
+  EXPECT_EQ(a.escape_routes.size(), b.escape_routes.size()) << what;
+  for (size_t k = 0; k < a.escape_routes.size() && k < b.escape_routes.size(); ++k) {
+    EXPECT_EQ(a.escape_routes[k].ego_trajectory, b.escape_routes[k].ego_trajectory) << what;
+  }
   size_t colliding = 0;
   for (std::int16_t s : a.first_collision_step) colliding += s > 0;
   return colliding;
 }
 
-TEST(BackendsAgree, PaperSceneS1) { EXPECT_GT(ExpectSameResult(bench::PaperSceneS1(), "S1"), 0u); }
+// Crowded but collision-free: twelve cars around the ego on a three-lane motorway (25 m/s),
+// those ahead faster (33-35 m/s), those behind slower (15-18 m/s), 12-45 m away. No hypothesis
+// pair can collide within 2 s (the ego at full power gains at most 6 m on a car ahead braking
+// at 9.7 m/s^2, a car behind at full power at most 8 m on the ego braking), yet every car is
+// within reach of the bounding tests, so the fast path's pruning is exercised.
+Scene CrowdedCollisionFree(unsigned variant) {
+  Scene s;
+  s.ego.state.speed_mps = 25.0;
+  s.ego.lanes = bench::StraightThreeLanes();
+  const double shift = 3.0 * variant;
+  for (int lane = -1; lane <= 1; ++lane) {
+    for (int k = 0; k < 2; ++k) {
+      Vehicle ahead, behind;
+      ahead.id = "ahead" + std::to_string(lane) + std::to_string(k);
+      ahead.state.x_m = 4.5 + 14.0 + 28.0 * k + shift + 2.0 * lane;
+      ahead.state.y_m = 3.5 * lane;
+      ahead.state.speed_mps = 33.0 + k + 0.5 * variant;
+      behind.id = "behind" + std::to_string(lane) + std::to_string(k);
+      behind.state.x_m = -(4.5 + 13.0 + 30.0 * k + shift - 1.5 * lane);
+      behind.state.y_m = 3.5 * lane;
+      behind.state.speed_mps = 18.0 - 2.0 * k - 0.5 * variant;
+      if (variant == 1) ahead.lanes = bench::StraightThreeLanes();  // own lanes, not associated
+      s.vehicles.push_back(ahead);
+      s.vehicles.push_back(behind);
+    }
+  }
+  return s;
+}
 
-TEST(BackendsAgree, PaperSceneS2) { EXPECT_GT(ExpectSameResult(bench::PaperSceneS2(), "S2"), 0u); }
+struct Variant {
+  std::string name;
+  Params params;
+  /** S1 and S2 have colliding pairs (not within a 1.2 s horizon: their cars are too far). */
+  bool paper_scenes_collide{true};
+  /** Which crowded scenes are collision-free: both with drivable hypotheses; with the
+   *  paper-literal ones (+1 g at any speed, no grip limit) the denser one collides. */
+  std::vector<bool> crowded_collision_free{true, true};
+};
 
-TEST(BackendsAgree, SeededRandomScenes) {
-  // Dense and sparse, empty ones included, with pedestrians, crossing and oncoming traffic.
-  int with_collisions = 0, without = 0;
+std::vector<Variant> Variants() {
+  std::vector<Variant> v{{"default", Params{}},
+                         {"paper-literal", ParamsPreset("paper-literal"), true, {false, true}}};
+  Params odd;
+  odd.path_sample_times_s = {0.37, 1.13, 1.71};
+  v.push_back({"odd sample instants 0.37/1.13/1.71 s", odd});
+  Params four;
+  four.path_sample_times_s = {0.5, 1.0, 1.5, 2.0};
+  four.neighbour_lane_samples = 1;  // 5^4 = 625 ego paths
+  v.push_back({"four sample instants", four});
+  Params coarse;
+  coarse.step_s = 0.05;
+  v.push_back({"step 0.05 s", coarse});
+  Params shorter;
+  shorter.horizon_s = 1.2;
+  shorter.path_sample_times_s = {0.4, 0.8, 1.2};
+  v.push_back({"horizon 1.2 s", shorter, false});
+  Params odd_step;
+  odd_step.step_s = 0.03;
+  odd_step.horizon_s = 1.5;
+  odd_step.path_sample_times_s = {0.31, 0.77, 1.49};
+  v.push_back({"step 0.03 s, horizon 1.5 s, odd instants", odd_step});
+  return v;
+}
+
+// Every scene family under one parameter variant.
+void ExpectFamiliesAgree(const Variant& v) {
+  const std::string tag = " (" + v.name + ")";
+  const size_t s1 = ExpectSameResult(bench::PaperSceneS1(), v.params, "S1" + tag);
+  const size_t s2 = ExpectSameResult(bench::PaperSceneS2(), v.params, "S2" + tag);
+  EXPECT_EQ(s1 > 0, v.paper_scenes_collide) << tag;
+  EXPECT_EQ(s2 > 0, v.paper_scenes_collide) << tag;
+  // Dense and sparse, with pedestrians, crossing and oncoming traffic; the ego alone.
+  int with_collisions = 0;
   for (unsigned seed = 1; seed <= 10; ++seed) {
     const int max_objects = seed <= 8 ? 4 : 0;  // seeds 9 and 10: the ego alone
     const size_t colliding =
         ExpectSameResult(testing::RandomScene(seed, max_objects, max_objects / 2, seed % 2 == 0),
-                         "seed " + std::to_string(seed));
-    (colliding > 0 ? with_collisions : without) += 1;
+                         v.params, "seed " + std::to_string(seed) + tag);
+    with_collisions += colliding > 0;
   }
-  // The family must exercise both outcomes, or agreement would prove little.
-  EXPECT_GE(with_collisions, 3);
-  EXPECT_GE(without, 1);
+  EXPECT_GE(with_collisions, 3) << tag;  // or agreement would prove little
+  int picked = 0;
+  for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) {
+    if (d.name == "stopped-car-ttc-1.50" || d.name == "motorway-neighbours-alongside" ||
+        d.name == "pedestrian-crosses-ttc-1.2" || d.name == "junction-car-crosses-ttc-1.3" ||
+        d.name == "cut-in-ttc-1.0" || d.name == "pedestrians-on-sidewalks") {
+      ExpectSameResult(d.scene, v.params, d.name + tag);
+      ++picked;
+    }
+  }
+  EXPECT_EQ(picked, 6) << "discrimination scenes renamed?";
+  // Crowded without collisions: a fast path that invents collisions fails here.
+  for (unsigned variant = 0; variant < 2; ++variant) {
+    const size_t colliding = ExpectSameResult(CrowdedCollisionFree(variant), v.params,
+                                              "crowded " + std::to_string(variant) + tag);
+    EXPECT_EQ(colliding == 0, v.crowded_collision_free[variant]) << "crowded " << variant << tag;
+  }
+}
+
+TEST(BackendsAgree, DefaultParams) { ExpectFamiliesAgree(Variants()[0]); }
+TEST(BackendsAgree, PaperLiteral) { ExpectFamiliesAgree(Variants()[1]); }
+TEST(BackendsAgree, OddSampleInstants) { ExpectFamiliesAgree(Variants()[2]); }
+TEST(BackendsAgree, FourSampleInstants) { ExpectFamiliesAgree(Variants()[3]); }
+TEST(BackendsAgree, AnotherStep) { ExpectFamiliesAgree(Variants()[4]); }
+TEST(BackendsAgree, ShorterHorizon) { ExpectFamiliesAgree(Variants()[5]); }
+TEST(BackendsAgree, OddStepHorizonAndInstants) { ExpectFamiliesAgree(Variants()[6]); }
+
+TEST(BackendsAgree, AllDiscriminationScenes) {
+  for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) {
+    ExpectSameResult(d.scene, Params{}, d.name);
+  }
 }
 
 }  // namespace

@@ -1,13 +1,18 @@
 // The estimator end to end on the CPU: counts, probabilities, p_cra extremes, determinism,
-// lanes, pedestrians.
+// lanes, pedestrians, batches, and the outputs for decisions (p_reference, unavoidability,
+// escape routes).
 #include "criticality/estimator.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
+#include "bench/discrimination_scenes.h"
 #include "bench/paper_scenes.h"
+#include "cpu/reference_backend.h"
+#include "src/problem.h"
 #include "test_scenes.h"
 
 namespace criticality {
@@ -76,7 +81,11 @@ TEST(Estimator, EveryHypothesisCollidingGivesOne) {
   EXPECT_NEAR(r.p_collision, 1.0, 1e-12);
   EXPECT_NEAR(r.first_collision_pmf[0], 1.0, 1e-12);
   EXPECT_EQ(r.collision_free_ego_trajectories, 0);
-  EXPECT_TRUE(r.escape_routes.empty());
+  EXPECT_NEAR(r.unavoidability, 1.0, 1e-12);
+  EXPECT_NEAR(r.p_reference, 1.0, 1e-12);
+  // Escape routes are never empty: the least colliding ones (here all collide for sure).
+  ASSERT_EQ(r.escape_routes.size(), 10u);
+  for (const EscapeRoute& e : r.escape_routes) EXPECT_NEAR(e.collision_probability, 1.0, 1e-12);
   for (std::int16_t s : r.first_collision_step) EXPECT_EQ(s, 1);
 }
 
@@ -221,20 +230,172 @@ TEST(Estimator, PedestriansAreEstimated) {
 namespace criticality {
 namespace {
 TEST(Estimator, BatchGivesWhatEachEstimateGives) {
+  // Scenes of different sizes and kinds in one batch (an ego alone, pedestrians, crossing
+  // traffic), each compared with an independent estimate: a separate estimator with the
+  // reference backend on the same scene. Mixing up the scenes' parts would show as other
+  // object ids, counts or risks; the batch reversed must give the results reversed.
   std::vector<Scene> scenes{bench::PaperSceneS1(), testing::RandomScene(3, 3, 1, true),
-                            testing::RandomScene(10, 0, 0, false), bench::PaperSceneS2()};
+                            testing::RandomScene(10, 0, 0, false),
+                            testing::RandomScene(7, 6, 2, true)};
+  for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) {
+    if (d.name == "junction-car-crosses-ttc-1.3" || d.name == "pedestrian-crosses-ttc-1.2")
+      scenes.push_back(d.scene);
+  }
+  ASSERT_EQ(scenes.size(), 6u) << "discrimination scenes renamed?";
   EstimatorOptions opt;
   opt.keep_pair_matrix = true;
   Estimator estimator(Params{}, opt);
   const std::vector<Result> batch = estimator.EstimateBatch(scenes);
   ASSERT_EQ(batch.size(), scenes.size());
+  EstimatorOptions ref_opt = opt;
+  ref_opt.backend = Backend::kReference;
   for (size_t k = 0; k < scenes.size(); ++k) {
-    const Result one = estimator.Estimate(scenes[k]);
+    Estimator independent(Params{}, ref_opt);
+    const Result one = independent.Estimate(scenes[k]);
     EXPECT_EQ(batch[k].p_collision, one.p_collision) << k;
+    EXPECT_EQ(batch[k].p_reference, one.p_reference) << k;
+    EXPECT_EQ(batch[k].unavoidability, one.unavoidability) << k;
     EXPECT_EQ(batch[k].first_collision_step, one.first_collision_step) << k;
     EXPECT_EQ(batch[k].counts.pose_combinations, one.counts.pose_combinations) << k;
+    ASSERT_EQ(batch[k].objects.size(), one.objects.size()) << k;
+    for (size_t o = 0; o < one.objects.size(); ++o) {
+      EXPECT_EQ(batch[k].objects[o].id, one.objects[o].id) << k;
+      EXPECT_EQ(batch[k].objects[o].contribution, one.objects[o].contribution) << k;
+    }
+    ASSERT_EQ(batch[k].escape_routes.size(), one.escape_routes.size()) << k;
+    for (size_t e = 0; e < one.escape_routes.size(); ++e) {
+      EXPECT_EQ(batch[k].escape_routes[e].ego_trajectory, one.escape_routes[e].ego_trajectory);
+    }
+  }
+  // The scenes differ, so the check above can tell them apart.
+  EXPECT_NE(batch[0].counts.co_trajectories, batch[3].counts.co_trajectories);
+  EXPECT_NE(batch[0].p_collision, batch[4].p_collision);
+  const std::vector<Scene> reversed(scenes.rbegin(), scenes.rend());
+  const std::vector<Result> back = estimator.EstimateBatch(reversed);
+  for (size_t k = 0; k < scenes.size(); ++k) {
+    EXPECT_EQ(back[scenes.size() - 1 - k].p_collision, batch[k].p_collision) << k;
+    EXPECT_EQ(back[scenes.size() - 1 - k].first_collision_step, batch[k].first_collision_step);
   }
   EXPECT_TRUE(estimator.EstimateBatch({}).empty());
 }
+}  // namespace
+}  // namespace criticality
+
+namespace criticality {
+namespace {
+
+// p_reference, unavoidability and the escape routes, against their definitions.
+void ExpectDecisionOutputs(const Scene& scene, const Params& params, const std::string& what) {
+  EstimatorOptions opt;
+  opt.keep_pair_matrix = true;
+  Estimator estimator(params, opt);
+  const Result r = estimator.Estimate(scene);
+  const int n_ego = r.counts.ego_trajectories;
+  const std::vector<double>& col = r.ego_collision_probability;
+  // The reference is the first most probable ego hypothesis.
+  const int ref =
+      static_cast<int>(std::max_element(r.ego_probability.begin(), r.ego_probability.end()) -
+                       r.ego_probability.begin());
+  EXPECT_EQ(r.reference_ego_trajectory, ref) << what;
+  EXPECT_EQ(r.p_reference, col[ref]) << what;
+  EXPECT_EQ(r.unavoidability, *std::min_element(col.begin(), col.end())) << what;
+  // Ranked by collision probability, then probability; as many as asked for.
+  ASSERT_EQ(r.escape_routes.size(), std::min<size_t>(n_ego, params.max_escape_routes)) << what;
+  EXPECT_EQ(r.escape_routes.front().collision_probability, r.unavoidability) << what;
+  for (size_t k = 1; k < r.escape_routes.size(); ++k) {
+    const EscapeRoute &a = r.escape_routes[k - 1], &b = r.escape_routes[k];
+    EXPECT_TRUE(
+        a.collision_probability < b.collision_probability ||
+        (a.collision_probability == b.collision_probability && a.probability >= b.probability))
+        << what << " route " << k;
+  }
+  // No unreported hypothesis beats the last reported one.
+  const EscapeRoute& last = r.escape_routes.back();
+  std::vector<bool> reported(n_ego, false);
+  for (const EscapeRoute& e : r.escape_routes) reported[e.ego_trajectory] = true;
+  for (int i = 0; i < n_ego; ++i) {
+    if (reported[i]) continue;
+    EXPECT_TRUE(col[i] > last.collision_probability ||
+                (col[i] == last.collision_probability && r.ego_probability[i] <= last.probability))
+        << what << " hypothesis " << i;
+  }
+  // Each route's manoeuvre is its hypothesis' trajectory, as the reference backend stores it.
+  const internal::Problem pb = internal::BuildProblem(scene, params);
+  ReferenceBackend reference;
+  reference.GenerateTrajectories(pb);
+  const internal::TrajectoryStore& ego = reference.EgoTrajectories();
+  for (const EscapeRoute& e : r.escape_routes) {
+    const int i = e.ego_trajectory;
+    EXPECT_EQ(e.collision_probability, col[i]);
+    EXPECT_EQ(e.probability, r.ego_probability[i]);
+    EXPECT_EQ(e.profile, i / pb.ego.n_paths);
+    EXPECT_EQ(e.profile_accel_mps2, pb.ego_profile_accel[e.profile]);
+    ASSERT_EQ(e.sections.size(), params.path_sample_times_s.size());
+    for (size_t k = 0; k < e.sections.size(); ++k) {
+      EXPECT_EQ(e.target_lanes[k], pb.ego_sample_lane[e.sections[k]]);
+    }
+    ASSERT_EQ(static_cast<int>(e.x_m.size()), r.counts.time_steps);
+    for (int n = 0; n < r.counts.time_steps; ++n) {
+      ASSERT_EQ(e.x_m[n], ego.x[ego.Offset(i) + n]) << what << " route " << i << " step " << n;
+      ASSERT_EQ(e.y_m[n], ego.y[ego.Offset(i) + n]);
+      ASSERT_EQ(e.yaw_rad[n], ego.yaw[ego.Offset(i) + n]);
+      EXPECT_NEAR(e.time_s[n], (n + 1) * params.step_s, 1e-12);
+    }
+  }
+}
+
+TEST(Estimator, DecisionOutputsFollowTheirDefinitions) {
+  ExpectDecisionOutputs(bench::PaperSceneS1(), Params{}, "S1");
+  ExpectDecisionOutputs(bench::PaperSceneS2(), ParamsPreset("paper-literal"), "S2 paper-literal");
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    ExpectDecisionOutputs(testing::RandomScene(seed, 4, 2, true), Params{},
+                          "random " + std::to_string(seed));
+  }
+  for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) {
+    ExpectDecisionOutputs(d.scene, Params{}, d.name);
+  }
+  Params few;
+  few.max_escape_routes = 3;
+  ExpectDecisionOutputs(bench::PaperSceneS1(), few, "S1, 3 routes");
+}
+
+TEST(Estimator, EscapeRouteRecordsTheManoeuvreADriverWouldFollow) {
+  // A stopped car 30 m ahead at 20 m/s (time to collision 1.5 s): keeping on collides
+  // (p_reference 1), emergency braking or an early lane change escape (unavoidability 0), so
+  // the best routes are collision-free. The most probable collision-free lane change steers
+  // towards the new lane, counter-steers, ends about a lane width off the own-lane centre,
+  // within the friction circle and only after the steering latency.
+  const std::vector<bench::DiscriminationScene> all = bench::DiscriminationScenes();
+  const auto it = std::find_if(all.begin(), all.end(), [](const bench::DiscriminationScene& d) {
+    return d.name == "stopped-car-ttc-1.50";
+  });
+  ASSERT_NE(it, all.end());
+  Params params;
+  params.max_escape_routes = 200;
+  Estimator estimator(params);
+  const Result r = estimator.Estimate(it->scene);
+  EXPECT_NEAR(r.p_reference, 1.0, 1e-9);
+  EXPECT_EQ(r.unavoidability, 0.0);
+  EXPECT_EQ(r.escape_routes.front().collision_probability, 0.0);
+  const auto lane_change =
+      std::find_if(r.escape_routes.begin(), r.escape_routes.end(), [](const EscapeRoute& e) {
+        return e.collision_probability == 0.0 && e.target_lanes.front() != 0;
+      });
+  ASSERT_NE(lane_change, r.escape_routes.end());
+  const EscapeRoute& best = *lane_change;
+  const double side = best.target_lanes.front();
+  EXPECT_NEAR(best.lateral_offset_m.back() * side, 3.5, 1.2);
+  const auto [lo, hi] = std::minmax_element(best.steer_rad.begin(), best.steer_rad.end());
+  EXPECT_GT(side > 0 ? *hi : -*lo, 0.01);   // steers towards the new lane
+  EXPECT_GT(side > 0 ? -*lo : *hi, 0.005);  // and counter-steers to straighten up
+  for (size_t n = 0; n < best.steer_rad.size(); ++n) {
+    EXPECT_LE(std::hypot(best.accel_mps2[n], best.lateral_accel_mps2[n]), 9.81 * (1 + 1e-9));
+    if (best.time_s[n] < 0.3 - 1e-9) {
+      EXPECT_EQ(best.steer_rad[n], 0.0);  // steering latency: the lane centre, straight
+    }
+  }
+  EXPECT_EQ(best.speed_mps.size(), best.time_s.size());
+}
+
 }  // namespace
 }  // namespace criticality

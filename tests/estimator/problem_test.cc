@@ -9,6 +9,7 @@
 
 #include "bench/paper_scenes.h"
 #include "core/hypothesis_set.h"
+#include "criticality/errors.h"
 #include "test_scenes.h"
 
 namespace criticality::internal {
@@ -41,8 +42,8 @@ TEST(Problem, ReferenceHypothesisIsTheMostProbable) {
     EXPECT_EQ(core::SectionOfPath(pb.ego, i % pb.ego.n_paths, k), 3);
 }
 
-TEST(Problem, WeavingEgoPathsArePenalised) {
-  Params p;
+TEST(Problem, PaperLiteralPenalisesSectionChanges) {
+  Params p = ParamsPreset("paper-literal");
   const Problem pb = BuildProblem(bench::PaperSceneS1(), p);
   const int cruise = p.profiles - 2;  // the zero profile
   auto prob = [&](int s0, int s1, int s2) {
@@ -58,14 +59,157 @@ TEST(Problem, WeavingEgoPathsArePenalised) {
   EXPECT_LT(ratio, ratio_flat);
 }
 
-TEST(Problem, ProfilesForEgoAreSlipsAndForOthersAccelerations) {
-  const Problem pb = BuildProblem(bench::PaperSceneS1(), Params{});
+TEST(Problem, PaperLiteralProfilesForEgoAreSlipsAndForOthersAccelerations) {
+  const Problem pb = BuildProblem(bench::PaperSceneS1(), ParamsPreset("paper-literal"));
   EXPECT_EQ(pb.ego.model, core::MotionModelKind::kTwoTrack);
+  EXPECT_FALSE(pb.ego.force_profiles);
   EXPECT_EQ(pb.ego.profile_target[0], -0.1);
   EXPECT_EQ(pb.ego.profile_target[5], 0.1);
   EXPECT_EQ(pb.cos[0].model, core::MotionModelKind::kOneTrack);
   EXPECT_EQ(pb.cos[0].profile_target[0], -9.7);
   EXPECT_EQ(pb.cos[0].profile_target[5], 9.7);
+}
+
+// Probability mass of object o's hypotheses whose path index satisfies `pick`.
+template <typename Pick>
+double PathMass(const Problem& pb, size_t o, Pick pick) {
+  const core::HypothesisSet& h = pb.cos[o];
+  double m = 0.0;
+  for (int t = 0; t < h.Trajectories(); ++t) {
+    if (pick(t % h.n_paths)) m += pb.co_probability[pb.co_offset[o] + t];
+  }
+  return m;
+}
+
+TEST(Problem, EveryObjectsLaneChangesArePenalisedPerCrossing) {
+  // S1's lead car has three lanes (7 paths: 0-1 right lane, 2-4 its own, 5-6 left lane): with
+  // lane_crossing_penalty 100 its four neighbour-lane paths get about 1 % (highD: about 0.75 %
+  // of vehicles start a lane change within 2 s), without it a large share.
+  Params p;
+  const Problem pb = BuildProblem(bench::PaperSceneS1(), p);
+  auto neighbour = [](int path) { return path < 2 || path > 4; };
+  const double lane_change = PathMass(pb, 0, neighbour);
+  EXPECT_GT(lane_change, 0.003);
+  EXPECT_LT(lane_change, 0.02);
+  p.lane_crossing_penalty = 1.0;
+  EXPECT_GT(PathMass(BuildProblem(bench::PaperSceneS1(), p), 0, neighbour), 10 * lane_change);
+  // The ego: a path that leaves its lane and comes back crosses twice (100^2), one that stays
+  // in the new lane once.
+  const Problem ego = BuildProblem(bench::PaperSceneS1(), Params{});
+  const int ref = ego.ego_reference_trajectory / ego.ego.n_paths * ego.ego.n_paths;
+  const double once = ego.ego_probability[ref + 5 * 49 + 5 * 7 + 5];
+  const double twice = ego.ego_probability[ref + 5 * 49 + 3 * 7 + 3];
+  EXPECT_GT(once / twice, 50.0);
+}
+
+TEST(Problem, CounterTrafficPenaltyAppliesToOtherVehiclesAsTheySeeTheirLanes) {
+  // An oncoming car in the ego's left lane (counter traffic for the ego) without lanes of its
+  // own: the ego's lane is ITS left lane, with traffic against it, so its paths there (the two
+  // samples left of its own three) carry c_cou.
+  Scene scene = bench::PaperSceneS1();
+  scene.ego.lanes.right.reset();
+  scene.ego.lanes.left->counter_traffic = true;
+  Vehicle oncoming;
+  oncoming.id = "oncoming";
+  oncoming.state.x_m = 60.0;
+  oncoming.state.y_m = 3.5;
+  oncoming.state.yaw_rad = core::kPi;
+  oncoming.state.speed_mps = 20.0;
+  scene.vehicles = {oncoming};
+  Params mild, strict;
+  mild.counter_traffic_penalty = 1.0;
+  strict.counter_traffic_penalty = 10.0;
+  const Problem a = BuildProblem(scene, mild), b = BuildProblem(scene, strict);
+  ASSERT_EQ(a.cos[0].n_paths, 5);  // its own lane (3) and the ego's (2), on its left
+  auto into_ego_lane = [](int path) { return path >= 3; };
+  const double pa = PathMass(a, 0, into_ego_lane), pb = PathMass(b, 0, into_ego_lane);
+  EXPECT_GT(pa, 0.0);
+  EXPECT_NEAR(pa / pb, 10.0, 0.1);  // both small: the normalisation barely moves
+}
+
+TEST(Problem, NaturalisticScoresConcentrateOnTheReference) {
+  // A car at 20 m/s cruising: an emergency stop on the lane centre is rare (9.7 m/s^2 is 3.9
+  // decel sigmas; its latency and ramp make it a little less in distance), full power too
+  // (3.3 m/s^2 at 20 m/s, 3.3 sigmas of 1 m/s^2), gentle braking is not rare; a narrower
+  // braking spread makes gentle braking less likely. The paper-literal scores keep about half
+  // of the cruise score for the emergency stop.
+  Params p;
+  const Problem pb = BuildProblem(bench::PaperSceneS1(), p);
+  const core::HypothesisSet& lead = pb.cos[0];
+  auto prob = [&](const Problem& q, int profile) {
+    return q.co_probability[q.co_offset[0] + profile * lead.n_paths + 3];
+  };
+  const int emergency = 0, gentle = 3, cruise = 4, full = 5;
+  EXPECT_EQ(lead.profile_target[cruise], 0.0);
+  EXPECT_LT(prob(pb, emergency) / prob(pb, cruise), 0.01);
+  EXPECT_GT(prob(pb, emergency) / prob(pb, cruise), 1e-6);  // unlikely, not impossible
+  EXPECT_LT(prob(pb, full) / prob(pb, cruise), 0.02);
+  const Problem literal = BuildProblem(bench::PaperSceneS1(), ParamsPreset("paper-literal"));
+  EXPECT_GT(prob(literal, emergency) / prob(literal, cruise), 0.3);
+  EXPECT_GT(prob(pb, gentle) / prob(pb, cruise), 0.2);
+  p.decel_score_sigma_mps2 = 1.0;
+  const Problem narrow = BuildProblem(bench::PaperSceneS1(), p);
+  EXPECT_LT(prob(narrow, gentle) / prob(narrow, cruise), 0.5 * prob(pb, gentle) / prob(pb, cruise));
+  EXPECT_LT(prob(narrow, emergency) / prob(narrow, cruise), 1e-9);
+}
+
+TEST(Problem, TheCurrentAccelerationIsAProfile) {
+  // Braking at 3 m/s^2 now: the profile nearest to it (-2.425) becomes -3, and the reference
+  // hypothesis (holding it on the lane centre) is the most probable.
+  Scene scene = bench::PaperSceneS1();
+  scene.ego.state.accel_mps2 = -3.0;
+  scene.vehicles[0].state.accel_mps2 = -3.0;
+  const Problem pb = BuildProblem(scene, Params{});
+  EXPECT_EQ(pb.cos[0].profile_target[3], -3.0);
+  EXPECT_EQ(pb.ego_profile_accel[3], -3.0);
+  const int i = pb.ego_reference_trajectory;
+  EXPECT_EQ(i / pb.ego.n_paths, 3);
+  for (int k = 0; k < pb.ego.n_instants; ++k)
+    EXPECT_EQ(core::SectionOfPath(pb.ego, i % pb.ego.n_paths, k), 3);
+  // The paper-literal profiles keep the zero profile.
+  EXPECT_EQ(BuildProblem(scene, ParamsPreset("paper-literal")).cos[0].profile_target[4], 0.0);
+}
+
+TEST(Problem, PedestriansStepOntoTheRoadRarely) {
+  // A pedestrian walking along the kerb 1 m right of the ego lane: turning 51 deg towards the
+  // road crosses the lane edge within its reach (1.4 m/s x 2 s), turning 51 deg away does not;
+  // both score the same otherwise, so their ratio is the crossing penalty.
+  Scene scene = bench::PaperSceneS1();
+  scene.vehicles.clear();
+  scene.ego.lanes.right.reset();
+  Pedestrian walker;
+  walker.id = "walker";
+  walker.state.x_m = 20.0;
+  walker.state.y_m = -2.75;
+  walker.state.speed_mps = 1.4;
+  scene.pedestrians = {walker};
+  const Problem pb = BuildProblem(scene, Params{});
+  const int towards = 1, away = 6;  // headings +51 and -51 deg
+  EXPECT_NEAR(PathMass(pb, 0, [&](int l) { return l == away; }) /
+                  PathMass(pb, 0, [&](int l) { return l == towards; }),
+              100.0, 1e-6);
+  // Paper-literal: no such penalty.
+  const Problem literal = BuildProblem(scene, ParamsPreset("paper-literal"));
+  EXPECT_NEAR(PathMass(literal, 0, [&](int l) { return l == away; }) /
+                  PathMass(literal, 0, [&](int l) { return l == towards; }),
+              1.0, 1e-9);
+}
+
+TEST(Problem, PresetsAreNamed) {
+  const Params literal = ParamsPreset("paper-literal");
+  EXPECT_EQ(literal.scoring, Params::Scoring::kPaperLiteral);
+  EXPECT_EQ(literal.steer_latency_s, 0.0);
+  EXPECT_FALSE(literal.friction_limited_lateral);
+  EXPECT_FALSE(literal.power_limited_drive);
+  EXPECT_EQ(ParamsPreset("default").scoring, Params::Scoring::kNaturalistic);
+  try {
+    ParamsPreset("calibrated");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("preset = 'calibrated'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("default or paper-literal"), std::string::npos) << msg;
+  }
 }
 
 }  // namespace

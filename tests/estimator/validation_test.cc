@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "bench/paper_scenes.h"
 #include "criticality/errors.h"
@@ -101,6 +103,39 @@ TEST(Validation, ImpossibleCounts) {
   opt.threads = -2;
   EXPECT_THROW(Estimator(Params{}, opt), InputError);
   EXPECT_THROW(ParseBackend("gpu"), InputError);
+}
+
+TEST(Validation, DrivabilityAndScoringParams) {
+  // Each invalid value is named with its field.
+  struct Case {
+    const char* field;
+    std::function<void(Params*)> set;
+  };
+  const std::vector<Case> cases{
+      {"params.steer_latency_s", [](Params* p) { p->steer_latency_s = -0.1; }},
+      {"params.drive_traction_share", [](Params* p) { p->drive_traction_share = 1.5; }},
+      {"params.drive_traction_share", [](Params* p) { p->drive_traction_share = 0.0; }},
+      {"params.accel_score_sigma_mps2", [](Params* p) { p->accel_score_sigma_mps2 = 0.0; }},
+      {"params.lateral_offset_sigma_m", [](Params* p) { p->lateral_offset_sigma_m = -1.0; }},
+      {"params.heading_score_sigma_rad", [](Params* p) { p->heading_score_sigma_rad = 0.0; }},
+      {"params.pedestrian_speed_sigma_mps",
+       [](Params* p) { p->pedestrian_speed_sigma_mps = std::nan(""); }},
+      {"params.lane_crossing_penalty", [](Params* p) { p->lane_crossing_penalty = 0.5; }},
+      {"params.counter_traffic_penalty", [](Params* p) { p->counter_traffic_penalty = 0.9; }},
+      {"params.scoring", [](Params* p) { p->scoring = static_cast<Params::Scoring>(7); }},
+  };
+  for (const Case& c : cases) {
+    Params p;
+    c.set(&p);
+    try {
+      ValidateParams(p);
+      ADD_FAILURE() << c.field << ": no exception";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.field), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(ValidateParams(ParamsPreset("paper-literal")));
+  EXPECT_THROW(ParamsPreset("Paper-Literal"), InputError);
 }
 
 TEST(Validation, WorkloadTooLargeForMemory) {

@@ -5,6 +5,7 @@
  * the comment names the source we used, or says "project choice" and which test shows its effect.
  */
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace criticality {
@@ -83,28 +84,129 @@ struct Params {
   /** Width of the virtual own lane when the sensors deliver none. RAA (FGSV 2008): 3.5-3.75 m. */
   double virtual_lane_width_m{3.5};
 
+  // --- Drivability (DESIGN.md: every hypothesis must be drivable). The paper asks for drivable
+  // trajectories but leaves these limits open; ParamsPreset("paper-literal") turns them off. ---
+  /** Lateral reaction latency: until this time a vehicle (ego or other) keeps following its
+   *  reference path (its own lane's centre, which needs no reaction: a car finishing a turn
+   *  straightens up with its lane); then the lateral controller steers towards its
+   *  hypothesis' path. The counterpart of latency_s for braking (DESIGN.md: "reaction latency
+   *  for steering as for braking").
+   *  Summala (1981, Human Factors 23(6)) measured about 1.5 s for unalerted drivers to start an
+   *  avoidance steer; hypotheses also cover manoeuvres already decided, so we take the
+   *  movement-and-actuation part only: about 0.2 s to move the hands (as latency_s for the
+   *  foot) plus about 0.1 s for the steering system and tyres to build side force. Project
+   *  choice: 0.3 s; paper-literal: 0 (steering from t = 0). */
+  double steer_latency_s{0.3};
+  /** Friction limit of the lateral dynamics: the one-track model's axle side forces saturate at
+   *  what the friction circle leaves beside the longitudinal force (mu F_z per axle, static
+   *  loads), and the kinematic model's steering is limited so that v^2 tan(delta) / L stays
+   *  within it. So |a| = hypot(a_x, a_y) <= mu g for every vehicle hypothesis (the two-track
+   *  ego has its friction circle per wheel already). A measured yaw rate beyond the limit (v r >
+   *  mu g: SUMO's headings jump on junction lanes) is limited to mu g / v. Paper-literal: off
+   *  (the linear one-track model of the paper has no grip limit: lane changes reached 1.6 g). */
+  bool friction_limited_lateral{true};
+  /** Positive acceleration limited by traction and power: a <= min(drive_traction_share mu g,
+   *  P / (m v)), P / m by vehicle class (vehicle_class.h: segment averages, at the wheels).
+   *  Applies to the other vehicles' acceleration profiles and to the ego's driving force.
+   *  Paper-literal: off (+9.7 m/s^2, and the ego's +0.1 slip = +1 g, at any speed). */
+  bool power_limited_drive{true};
+  /** Share of mu m g the driven axle transmits: front-wheel drive (the common layout of the
+   *  classes here) with the static front axle load of our vehicle geometry, l_r / L = 0.55
+   *  (vehicle_class.h). Project choice: 0.55. */
+  double drive_traction_share{0.55};
+  /** The ego's braking hypotheses spread in deceleration, like the other vehicles' (equally
+   *  spaced over vehicle_accel_min_mps2..0: gentle to emergency, -2.4 to -9.7 m/s^2 with 6
+   *  profiles), ramped with latency_s and jerk_mps3 in acceleration and applied as tyre force
+   *  demand (F_x = m a on the four wheels, within each wheel's friction circle). Paper-literal:
+   *  false: equally spaced longitudinal slip ego_slip_min..ego_slip_max, which the tyre curve
+   *  maps to -9.8, -9.6, -8.3 and -5.2 m/s^2 (no gentle braking). */
+  bool ego_profiles_in_accel{true};
+  /** The profile sample nearest to the object's current acceleration (minimum and maximum
+   *  excepted) is replaced by the current acceleration itself, so that the reference
+   *  hypothesis of the paper ("keep driving with the current acceleration") is one of the
+   *  hypotheses. Project choice; paper-literal: false (the zero profile, "cruising"). */
+  bool profiles_include_current_accel{true};
+
   // --- Scoring (paper Sec. IV-D-1): n_h = (w_acc n_acc + w_str d_str) / (c_com c_cou) ---
-  /** Weights. The paper gives none ("domain knowledge"); equal weights are the neutral choice. */
+  /** Which functions fill the paper's formula. kNaturalistic (default): Gaussian deviation
+   *  scores with widths from naturalistic driving data, d_str scoring the hypothesis' position
+   *  against the reference trajectory along AND across the road, c_com counting lane crossings
+   *  of every object. kPaperLiteral: the first implementation's functions, kept so that
+   *  evaluations can show both (see the fields marked paper-literal below). */
+  enum class Scoring { kPaperLiteral, kNaturalistic };
+  Scoring scoring{Scoring::kNaturalistic};
+  /** Weights. The paper gives none ("domain knowledge"). With kNaturalistic, n_acc and d_str
+   *  both fall with an acceleration deviation (d_str through the distance it gains or loses),
+   *  so w_acc n_acc is the share a path deviation keeps: w_acc / (w_acc + w_str) = 1/5 of the
+   *  reference's score for a path that deviates only laterally. Project choice (see
+   *  bench/RESULTS.md for the sensitivity); paper-literal: equal weights 1, 1. */
   double w_acc{1.0};
-  double w_str{1.0};
-  /** n_acc = 1 / (1 + |target - current| / (accel_score_scale * range)), range = the profile
-   *  range's maximum. Project choice: a profile at the range limit scores about 1/4 of the
-   *  current-acceleration one; test: scoring_test.cc. */
+  double w_str{4.0};
+  /** kNaturalistic: n_acc = exp(-(a_k - a_ref)^2 / (2 sigma_a^2)), a_ref = the current
+   *  acceleration, sigma_a = accel_score_sigma_mps2 for a_k > a_ref. Bosetti, Da Lio & Saroldi
+   * (2014, Eur. Transp. Res. Rev. 6:157-170; 35 h of naturalistic urban, extra-urban and motorway
+   * driving): drivers' longitudinal accelerations stay within about +-2 m/s^2 outside emergencies,
+   * far inside the friction limit; sigma_a = 1 m/s^2 puts that envelope at 2 sigma. */
+  double accel_score_sigma_mps2{1.0};
+  /** The same for a deceleration (a_k < a_ref, and in d_str a distance lost): drivers brake
+   *  harder than they accelerate. AASHTO (A Policy on Geometric Design of Highways and
+   *  Streets, 2011, stopping sight distance): most drivers stopping for an unexpected object
+   *  decelerate at more than 4.5 m/s^2, and 3.4 m/s^2 is comfortable for most; sigma = 2.5
+   *  m/s^2 puts them at 1.4 and 1.8 sigma (a car braking at 4-5 m/s^2 to yield at a junction is
+   *  not a rare event: SUMO's drivers do it late), while an emergency stop (9.7 m/s^2) stays
+   *  out at 3.9 sigma. */
+  double decel_score_sigma_mps2{2.5};
+  /** kNaturalistic: d_str = exp(-(mean_i (dy_i / sigma_y)^2 + mean_i (dx_i / sigma_x(t_i))^2) / 2)
+   *  over the sample instants t_i: dy_i the path sample's offset from the reference (own-lane
+   *  centre; for pedestrians the heading change over heading_score_sigma_rad replaces it), dx_i
+   *  the distance the profile gains or loses on the reference trajectory, sigma_x(t_i) what a
+   *  profile one sigma_a off the reference (decel_score_sigma_mps2 for a distance lost) gains
+   *  or loses by t_i through the same latency, ramp and drive limit: the same deviation as
+   *  n_acc measures, in distance, so that a stop or the power limit counts as it happens.
+   *  sigma_y: the standard deviation of lateral position of sober drivers on a motorway is
+   *  about 0.18-0.25 m (Verster & Roth 2011, Int. J. Gen. Med. 4:359-371, the on-the-road
+   *  driving test); we take 0.25 m. */
+  double lateral_offset_sigma_m{0.25};
+  /** kNaturalistic, pedestrians: sigma_x(t) = pedestrian_speed_sigma_mps * t in d_str: a
+   *  walker's position strays from the constant-speed prediction as walking speeds spread. Fugger
+   * et al. (2001, SAE 2001-01-0896; 288 pedestrians at signalised crosswalks): steady walking
+   * speed 1.36 +- 0.24 m/s. */
+  double pedestrian_speed_sigma_mps{0.24};
+  /** kNaturalistic, pedestrians: heading change width. Project choice (no naturalistic source
+   *  found): 0.5 rad, so that the neighbouring headings (+-51 deg with 7 headings) keep about
+   *  a fifth of the straight-on score. */
+  double heading_score_sigma_rad{0.5};
+  /** kNaturalistic: c_com = lane_crossing_penalty ^ (lane crossings of the path), for every
+   *  object: a crossing is a change of lane between consecutive sample instants (from its own
+   *  lane at t = 0); a pedestrian's are the ego lane dividers its heading line crosses within
+   *  its current speed x horizon, counted against the straight-on heading (|n - n_ref|), so
+   *  both stepping onto the road and turning back from it are manoeuvres. Krajewski et al.
+   *  (2018, the highD dataset, ITSC): 5,600 complete lane changes in 45,000 vehicle-km of German
+   *  motorway traffic, i.e. about 0.12 per vehicle-km, about 0.75 % per vehicle in a 2 s
+   *  horizon at 30 m/s. With 100, a vehicle's four neighbour-lane paths get about 1 % of its
+   *  mass. */
+  double lane_crossing_penalty{100.0};
+  /** c_cou for a path with any section on a lane of counter traffic as seen from the object
+   *  (every vehicle: the ego, and others through their own lanes or the ego's lanes seen from
+   *  their frame). kNaturalistic: 10 on top of the lane crossing: entering oncoming traffic
+   *  (overtaking on a two-lane road) needs a gap in it, and is far rarer with an oncoming car
+   *  in sight than a lane change on a motorway. Project choice; paper-literal: 4. */
+  double counter_traffic_penalty{10.0};
+  /** Paper-literal scoring: n_acc = 1 / (1 + |target - current| / (accel_score_scale * range)),
+   *  range = the profile range's maximum (a profile at the range limit scores about 1/4 of the
+   *  current-acceleration one); d_str = 1 / (1 + mean lateral offset of the path's samples from
+   *  the own-lane centre / path_score_scale_m) (a full lane change scores about 1/3; for
+   *  pedestrians the heading change over heading_score_scale_rad); c_com = 1 +
+   *  complexity_penalty * (section changes along the path). Project choices of the first
+   *  implementation. */
   double accel_score_scale{0.3};
-  /** d_str = 1 / (1 + mean lateral offset of the path's samples from the own-lane centre /
-   *  path_score_scale_m). Project choice: a full lane change (3.5 m) scores about 1/3. For
-   *  pedestrians the heading change replaces the offset, scaled by heading_score_scale_rad. */
   double path_score_scale_m{1.5};
   double heading_score_scale_rad{1.0};
-  /** c_com = 1 + complexity_penalty * (number of section changes along the path). Penalises
-   *  weaving ego paths (own -> left -> own). Project choice. */
   double complexity_penalty{0.5};
-  /** c_cou applied to a path with any section on a counter-traffic lane. Project choice: entering
-   *  oncoming traffic is rarer than a lane change; test: scoring_test.cc. */
-  double counter_traffic_penalty{4.0};
 
   // --- Outputs and limits ---
-  /** How many escape routes (collision-free ego hypotheses, most probable first) to return. */
+  /** How many escape routes to return: the ego hypotheses ranked by their collision
+   *  probability (lowest first), then by their own probability (Result::escape_routes). */
   int max_escape_routes{10};
   /** Upper bound on the memory one estimate may use (trajectories and the pair matrix). */
   std::uint64_t max_memory_bytes{std::uint64_t{4} << 30};
@@ -117,5 +219,13 @@ struct Params {
 
 /** Throws InputError naming the first invalid field and its value. */
 void ValidateParams(const Params& params);
+
+/** Named parameter sets: "default" (Params{}: drivable hypotheses, naturalistic scoring) and
+ *  "paper-literal" (the first implementation: the paper's profiles and linear models without
+ *  friction or power limits, no steering latency, and its scoring), so that evaluations can
+ *  show both. @throws InputError naming the accepted names. */
+Params ParamsPreset(const std::string& name);
+/** The names ParamsPreset accepts. */
+std::vector<std::string> ParamsPresetNames();
 
 }  // namespace criticality

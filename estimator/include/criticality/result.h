@@ -27,14 +27,34 @@ struct ObjectResult {
   bool out_of_reach{false};
 };
 
-/** A collision-free ego hypothesis (paper Sec. V-A, "escape routes"). */
+/** An ego hypothesis offered as an escape route (paper Sec. V-A): what the driver would do and
+ *  how likely it is to collide. Result::escape_routes ranks them by collision probability
+ *  (lowest first), then by their own probability (highest first). */
 struct EscapeRoute {
   int ego_trajectory{0};           ///< index = profile * paths + path
   int profile{0};                  ///< index into the ego's profiles
-  double profile_slip{0.0};        ///< the profile's target longitudinal slip
-  double profile_accel_mps2{0.0};  ///< the steady deceleration/acceleration that slip gives
-  std::vector<int> sections;       ///< lateral sample index per sample instant (right to left)
-  double probability{0.0};         ///< occurrence probability p_EGO,i
+  double profile_slip{0.0};        ///< the profile's longitudinal slip (steady state)
+  double profile_accel_mps2{0.0};  ///< the profile's target acceleration (after latency, ramp)
+  /** Lateral sample index per sample instant (right to left: with all three lanes 0-1 the
+   *  right lane, 2-4 the own lane, 5-6 the left lane). */
+  std::vector<int> sections;
+  /** The lane each sample instant's section lies in: -1 right, 0 own, +1 left. */
+  std::vector<int> target_lanes;
+  double probability{0.0};            ///< occurrence probability p_EGO,i
+  double collision_probability{0.0};  ///< probability that it collides (chronological approx.)
+  /** The manoeuvre over time, re-simulated: entry n is predicted step n + 1, time (n + 1)
+   *  step_s. Speed, longitudinal and lateral acceleration in the vehicle frame, front-wheel
+   *  steering angle (positive = left), lateral offset from the centre of the ego's own lane
+   *  (positive = left, in the ego's frame at t = 0), and the pose in the scene frame. */
+  std::vector<double> time_s;
+  std::vector<double> speed_mps;
+  std::vector<double> accel_mps2;
+  std::vector<double> lateral_accel_mps2;
+  std::vector<double> steer_rad;
+  std::vector<double> lateral_offset_m;
+  std::vector<double> x_m;
+  std::vector<double> y_m;
+  std::vector<double> yaw_rad;
 };
 
 /** Work sizes, so that figures compare with the paper's (DESIGN.md "Counting"). */
@@ -56,14 +76,26 @@ struct ModuleTimes {
 
 struct Result {
   /** p_cra: probability that the scene leads to a collision of the ego (paper Sec. IV-D), with
-   *  the chronological approximation of conditional probabilities (Sec. IV-D-2). */
+   *  the chronological approximation of conditional probabilities (Sec. IV-D-2). Averages
+   *  over the ego's own hypotheses too, so it includes the ego's unlikely manoeuvres. */
   double p_collision{0.0};
+  /** The collision probability if the ego keeps its reference hypothesis: the most probable
+   *  one (keep the current acceleration, follow the own lane's centre), index
+   *  reference_ego_trajectory. What happens if the driver does nothing different. */
+  double p_reference{0.0};
+  int reference_ego_trajectory{0};
+  /** The smallest collision probability over all ego hypotheses: 1 = every ego hypothesis
+   *  collides (the paper's "unavoidable collision"); 0 = at least one is collision-free. */
+  double unavoidability{0.0};
   std::vector<ObjectResult> objects;
   /** first_collision_pmf[n]: probability that the ego's first collision happens at predicted
    *  step n+1, i.e. at time (n+1)*step_s. Sums to p_collision. */
   std::vector<double> first_collision_pmf;
-  /** Collision-free ego hypotheses, most probable first (at most Params::max_escape_routes). */
+  /** The ego hypotheses with the lowest collision probability, ties by their own probability
+   *  (highest first), at most Params::max_escape_routes; never empty when that is > 0 (when
+   *  every hypothesis collides, the least colliding ones). */
   std::vector<EscapeRoute> escape_routes;
+  /** Ego hypotheses that collide with no CO hypothesis at all. */
   int collision_free_ego_trajectories{0};
   /** Occurrence probability of every ego hypothesis and, for each, the probability that it
    *  collides (chronologically scaled), indexed by ego trajectory. */

@@ -32,7 +32,15 @@ VehicleClass ClassifyVehicle(double length_m, double width_m, std::optional<doub
  *  inertial data, 1999); axle cornering stiffness and CoG position from Isermann (2006),
  *  scaled with mass (about 55 N/rad per kg per axle); CoG at 45 % of the wheelbase from the
  *  front axle ("a little ahead of mid-wheelbase", DESIGN.md). `length_m` and `width_m` set the
- *  wheelbase (about 60 % of the length) and track (width - 0.25 m). */
+ *  wheelbase (about 60 % of the length) and track (width - 0.25 m).
+ *  Driving power at the wheels per unit mass (Params::power_limited_drive), W/kg: rated power
+ *  per mass times a drivetrain efficiency of 0.9 (Guzzella & Sciarretta, Vehicle Propulsion
+ *  Systems, 2013: about 0.9 for manual and dual-clutch gearboxes). Rated power per mass: our
+ *  estimates of the segment averages around the EU new-car average of 95 kW for 1,392 kg, 68
+ *  W/kg (ICCT, European Vehicle Market Statistics 2017/18): quadricycle 33 (EU L7e limit 15 kW,
+ *  Regulation (EU) 168/2013, at 450 kg), supermini 50, small family 65, large family 73,
+ *  executive 86, multi-purpose 58, off-roader 64, cargo van 33; at the wheels 30, 45, 58, 66,
+ *  77, 52, 57, 30. A large family car then reaches 3.3 m/s^2 at 20 m/s and 2.2 at 30 m/s. */
 core::VehicleParams VehicleParamsFor(VehicleClass c, double length_m, double width_m);
 
 }  // namespace criticality

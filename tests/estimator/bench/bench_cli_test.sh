@@ -20,6 +20,27 @@ done
 json=$("$bench" --scene S1 --backend reference --repeat 1 --warmup 0 --json | tail -n 1)
 check "reference backend named in JSON" grep -q '"backend":"reference"' <<<"$json"
 
+# Presets and the discrimination benchmark.
+json=$("$bench" --scene S1 --preset paper-literal --repeat 1 --warmup 0 --json | tail -n 1)
+check "paper-literal S1 reproduces the first implementation's p_cra" \
+  grep -q '"p_collision":0.10743262889816914,' <<<"$json"
+out=$("$bench" --discrimination --json)
+json=$(tail -n 1 <<<"$out")
+check "--discrimination JSON names its preset" grep -q '"preset":"default"' <<<"$json"
+for key in name critical ttc_s p_collision p_reference unavoidability best_escape; do
+  check "--discrimination JSON has $key" grep -q "\"$key\":" <<<"$json"
+done
+check "--discrimination has a stopped-car family" grep -q '"name":"stopped-car-ttc-1.50"' <<<"$json"
+check "--discrimination prints the margin" grep -q "margin" <<<"$out"
+dir=$(mktemp -d)
+"$bench" --discrimination --save-scenes "$dir" > /dev/null
+check "--save-scenes writes replayable scene files" \
+  "$bench" --scene-file "$dir/stopped-car-ttc-1.50.scene" --repeat 1 --warmup 0
+rm -rf "$dir"
+report=$("$bench" --scene S1 --repeat 1 --warmup 0 --report)
+check "--report shows p_reference and unavoidability" grep -q "unavoidability" <<<"$report"
+check "--report shows escape routes with their manoeuvre" grep -q "max lateral accel" <<<"$report"
+
 expect_error() {  # expect_error CODE PATTERN ARGS...
   local code=$1 pattern=$2; shift 2
   local err rc
@@ -32,6 +53,7 @@ expect_error 2 "params.profiles = 2" --profiles 2
 expect_error 2 "scene = 'S9'" --scene S9
 expect_error 2 "backend = 'gpu'" --backend gpu
 expect_error 2 "repeat" --repeat 0
+expect_error 2 "preset = 'fast'" --preset fast
 expect_error 2 "unrecognised option\|unrecognized option" --bogus
 check "--help explains the options" bash -c "'$bench' --help | grep -q -- '--backend'"
 exit $fail

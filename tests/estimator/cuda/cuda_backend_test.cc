@@ -1,5 +1,6 @@
 // The CUDA backend against the reference on the same scenes: identical colliding pairs except
-// pairs whose closest approach is within 1 mm, p_cra within 1e-4. Skips where no GPU is usable.
+// pairs that come within 1 mm of touching (checked pair by pair), p_cra, p_reference and
+// unavoidability within 1e-4. Skips where no GPU is usable.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,9 +8,13 @@
 #include <vector>
 
 #include "../test_scenes.h"
+#include "bench/discrimination_scenes.h"
 #include "bench/paper_scenes.h"
+#include "core/oriented_box.h"
+#include "cpu/reference_backend.h"
 #include "criticality/errors.h"
 #include "criticality/estimator.h"
+#include "src/problem.h"
 
 namespace criticality {
 namespace {
@@ -20,29 +25,57 @@ namespace {
     if (!CudaUsable(&why)) GTEST_SKIP() << why; \
   } while (0)
 
-// Differing pairs are allowed only where the two boxes come within 1 mm of touching: check
-// that growing/shrinking the CO by 1 mm flips the reference's answer at that step.
-void ExpectAgreement(const Scene& scene, const std::string& what) {
+// Differing pairs are allowed only where the two boxes come within 1 mm of touching: at the
+// earlier of the two first-colliding steps, the CO box grown by 1 mm must overlap the ego box
+// (where only the GPU saw a collision) or shrunk by 1 mm must not (where only the CPU did),
+// with the CPU's poses.
+void ExpectAgreement(const Scene& scene, const std::string& what, const Params& params = {}) {
   EstimatorOptions ref_opt, gpu_opt;
   ref_opt.backend = Backend::kCpu;  // bit-identical to the reference (backends_agree_test), faster
   gpu_opt.backend = Backend::kCuda;
   ref_opt.keep_pair_matrix = gpu_opt.keep_pair_matrix = true;
-  Estimator ref(Params{}, ref_opt), gpu(Params{}, gpu_opt);
+  Estimator ref(params, ref_opt), gpu(params, gpu_opt);
   const Result a = ref.Estimate(scene);
   const Result b = gpu.Estimate(scene);
   ASSERT_EQ(a.first_collision_step.size(), b.first_collision_step.size()) << what;
+  const internal::Problem pb = internal::BuildProblem(scene, params);
+  ReferenceBackend poses;
+  poses.GenerateTrajectories(pb);
+  const internal::TrajectoryStore &ego = poses.EgoTrajectories(), &co = poses.CoTrajectories();
+  const int n_co = pb.CoTrajectories();
   size_t differing = 0;
   for (size_t k = 0; k < a.first_collision_step.size(); ++k) {
-    differing += a.first_collision_step[k] != b.first_collision_step[k];
+    const int sa = a.first_collision_step[k], sb = b.first_collision_step[k];
+    if (sa == sb) continue;
+    ++differing;
+    const int i = static_cast<int>(k / n_co), j = static_cast<int>(k % n_co);
+    const bool cpu_first = sa > 0 && (sb == 0 || sa < sb);
+    const int n = (cpu_first ? sa : sb) - 1;
+    const core::HypothesisSet& h = pb.cos[pb.co_object_of[j]];
+    const size_t e = ego.Offset(i) + n, c = co.Offset(j) + n;
+    const auto ego_box =
+        core::MakeBox(ego.x[e], ego.y[e], ego.yaw[e], pb.ego.half_length, pb.ego.half_width);
+    const double grow = cpu_first ? -1e-3 : 1e-3;
+    const auto co_box =
+        core::MakeBox(co.x[c], co.y[c], co.yaw[c], h.half_length + grow, h.half_width + grow);
+    // CPU alone: shrunk by 1 mm they are apart; GPU alone: grown by 1 mm they overlap.
+    EXPECT_EQ(core::BoxesOverlap(ego_box, co_box), !cpu_first)
+        << what << ": pair " << k << " (ego " << i << ", CO " << j << ") differs at step " << n + 1
+        << " by more than 1 mm";
   }
-  // Device and host libm differ in the last bits; over 100 steps that moves poses by far less
-  // than a millimetre, so at most a handful of grazing pairs may differ.
+  // Device and host libm differ in the last bits: only grazing pairs, and few, may differ.
   EXPECT_LE(differing, a.first_collision_step.size() / 10000 + 2) << what;
   EXPECT_NEAR(a.p_collision, b.p_collision, 1e-4) << what;
+  EXPECT_NEAR(a.p_reference, b.p_reference, 1e-4) << what;
+  EXPECT_NEAR(a.unavoidability, b.unavoidability, 1e-4) << what;
   ASSERT_EQ(a.objects.size(), b.objects.size());
   for (size_t o = 0; o < a.objects.size(); ++o) {
     EXPECT_NEAR(a.objects[o].contribution, b.objects[o].contribution, 1e-4) << what;
   }
+  ASSERT_EQ(a.escape_routes.size(), b.escape_routes.size()) << what;
+  EXPECT_NEAR(a.escape_routes.front().collision_probability,
+              b.escape_routes.front().collision_probability, 1e-4)
+      << what;
   double pmf = 0.0;
   for (double v : b.first_collision_pmf) pmf += v;
   EXPECT_NEAR(pmf, b.p_collision, 1e-9) << what;
@@ -62,6 +95,19 @@ TEST(CudaBackend, SeededRandomScenes) {
   }
 }
 
+TEST(CudaBackend, DiscriminationScenesAndOtherParameters) {
+  SKIP_WITHOUT_DEVICE();
+  for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) {
+    ExpectAgreement(d.scene, d.name);
+  }
+  ExpectAgreement(bench::PaperSceneS2(), "S2 paper-literal", ParamsPreset("paper-literal"));
+  Params odd;
+  odd.step_s = 0.03;
+  odd.horizon_s = 1.5;
+  odd.path_sample_times_s = {0.31, 0.77, 1.49};
+  ExpectAgreement(bench::PaperSceneS2(), "S2 odd step and instants", odd);
+}
+
 TEST(CudaBackend, BuffersAreReusedAcrossSizes) {
   SKIP_WITHOUT_DEVICE();
   EstimatorOptions opt;
@@ -78,7 +124,8 @@ TEST(CudaBackend, BatchInOneLaunchMatchesTheCpu) {
   SKIP_WITHOUT_DEVICE();
   std::vector<Scene> scenes{bench::PaperSceneS1(), testing::RandomScene(9, 0, 0, false),
                             bench::PaperSceneS2()};
-  for (unsigned seed = 1; seed <= 5; ++seed) scenes.push_back(testing::RandomScene(seed, 4, 2, true));
+  for (unsigned seed = 1; seed <= 5; ++seed)
+    scenes.push_back(testing::RandomScene(seed, 4, 2, true));
   EstimatorOptions gpu_opt;
   gpu_opt.backend = Backend::kCuda;
   Estimator gpu(Params{}, gpu_opt), cpu(Params{});

@@ -4,17 +4,18 @@
 // logic on every machine; on a GPU, cuda_backend_test checks the device itself.
 #include "cuda/kernel_bodies.h"
 
-#include "cuda/batch_layout.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <vector>
 
 #include "../test_scenes.h"
+#include "bench/discrimination_scenes.h"
 #include "bench/paper_scenes.h"
 #include "criticality/estimator.h"
+#include "cuda/batch_layout.h"
 #include "src/problem.h"
+#include "src/risk_assessment.h"
 
 namespace criticality {
 namespace {
@@ -35,10 +36,11 @@ Emulated RunKernelBodies(const std::vector<const internal::Problem*>& problems) 
   const cuda::BatchLayout b = h.HostView();
   const size_t ne = static_cast<size_t>(h.TotalEgo()) * h.steps;
   const size_t nc = static_cast<size_t>(h.TotalCo()) * h.steps;
-  std::vector<double> ex(ne), ey(ne), eyaw(ne), ec(ne), es(ne), cx(nc), cy(nc), cyaw(nc), cc(nc), cs(nc);
+  std::vector<double> ex(ne), ey(ne), eyaw(ne), ec(ne), es(ne), cx(nc), cy(nc), cyaw(nc), cc(nc),
+      cs(nc);
   for (int g = 0; g < h.TotalEgo() + h.TotalCo(); ++g) {
-    cuda::TrajectoryBody(g, h.sets.data(), b, problems.front()->sim, ex.data(), ey.data(), eyaw.data(),
-                         cx.data(), cy.data(), cyaw.data());
+    cuda::TrajectoryBody(g, h.sets.data(), b, problems.front()->sim, ex.data(), ey.data(),
+                         eyaw.data(), cx.data(), cy.data(), cyaw.data());
   }
   for (size_t k = 0; k < ne; ++k) cuda::TrigBody(k, eyaw.data(), ec.data(), es.data());
   for (size_t k = 0; k < nc; ++k) cuda::TrigBody(k, cyaw.data(), cc.data(), cs.data());
@@ -59,38 +61,60 @@ Emulated RunKernelBodies(const std::vector<const internal::Problem*>& problems) 
   }
   e.out.assign(h.TotalOut(), -1.0);
   for (int q = 0; q < h.TotalOut(); ++q) {
-    cuda::ReduceBody(q, b, h.p_ego.data(), e.ego_col.data(), by_step.data(), by_obj.data(), e.out.data());
+    cuda::ReduceBody(q, b, h.p_ego.data(), e.ego_col.data(), by_step.data(), by_obj.data(),
+                     e.out.data());
   }
   return e;
 }
 
 // Runs the scenes as one batch through the kernel bodies and compares every problem's part
 // with a separate CPU estimate of its scene.
-void ExpectBatchSameAsCpu(const std::vector<Scene>& scenes, const std::string& what) {
+void ExpectBatchSameAsCpu(const std::vector<Scene>& scenes, const std::string& what,
+                          const Params& params = Params{}) {
   std::vector<internal::Problem> problems;
-  for (const Scene& scene : scenes) problems.push_back(internal::BuildProblem(scene, Params{}));
+  for (const Scene& scene : scenes) problems.push_back(internal::BuildProblem(scene, params));
   std::vector<const internal::Problem*> views;
   for (const internal::Problem& pb : problems) views.push_back(&pb);
   const Emulated e = RunKernelBodies(views);
   const cuda::BatchHost& h = e.batch;
   EstimatorOptions opt;
   opt.keep_pair_matrix = true;
-  Estimator cpu(Params{}, opt);
+  Estimator cpu(params, opt);
   for (size_t p = 0; p < scenes.size(); ++p) {
     const std::string where = what + ", problem " + std::to_string(p);
     const Result r = cpu.Estimate(scenes[p]);
-    const std::vector<std::int16_t> first(e.first.begin() + h.pair_base[p], e.first.begin() + h.pair_base[p + 1]);
+    const std::vector<std::int16_t> first(e.first.begin() + h.pair_base[p],
+                                          e.first.begin() + h.pair_base[p + 1]);
     EXPECT_TRUE(first == r.first_collision_step) << where << ": pair matrices differ";
     const int steps = h.steps, n_obj = static_cast<int>(problems[p].cos.size());
     const double* out = e.out.data() + h.out_base[p];
-    for (int n = 0; n < steps; ++n) EXPECT_EQ(out[n], r.first_collision_pmf[n]) << where << " step " << n;
-    for (int o = 0; o < n_obj; ++o) EXPECT_EQ(out[steps + o], r.objects[o].contribution) << where << " object " << o;
+    for (int n = 0; n < steps; ++n)
+      EXPECT_EQ(out[n], r.first_collision_pmf[n]) << where << " step " << n;
+    for (int o = 0; o < n_obj; ++o)
+      EXPECT_EQ(out[steps + o], r.objects[o].contribution) << where << " object " << o;
     EXPECT_EQ(out[steps + n_obj], r.p_collision) << where;
-    const std::vector<double> col(e.ego_col.begin() + h.ego_base[p], e.ego_col.begin() + h.ego_base[p + 1]);
+    const std::vector<double> col(e.ego_col.begin() + h.ego_base[p],
+                                  e.ego_col.begin() + h.ego_base[p + 1]);
     EXPECT_TRUE(col == r.ego_collision_probability) << where;
     int free = 0;
     for (int g = h.ego_base[p]; g < h.ego_base[p + 1]; ++g) free += e.ego_hit[g] == 0;
     EXPECT_EQ(free, r.collision_free_ego_trajectories) << where;
+    // The outputs for decisions, from the device's per-ego results through the host code the
+    // CUDA backend runs after its kernels (FinishDecisionOutputs).
+    Result d;
+    d.ego_collision_probability = col;
+    internal::FinishDecisionOutputs(
+        problems[p], params,
+        std::vector<char>(e.ego_hit.begin() + h.ego_base[p], e.ego_hit.begin() + h.ego_base[p + 1]),
+        &d);
+    EXPECT_EQ(d.p_reference, r.p_reference) << where;
+    EXPECT_EQ(d.unavoidability, r.unavoidability) << where;
+    EXPECT_EQ(d.collision_free_ego_trajectories, r.collision_free_ego_trajectories) << where;
+    ASSERT_EQ(d.escape_routes.size(), r.escape_routes.size()) << where;
+    for (size_t k = 0; k < r.escape_routes.size(); ++k) {
+      EXPECT_EQ(d.escape_routes[k].ego_trajectory, r.escape_routes[k].ego_trajectory) << where;
+      EXPECT_EQ(d.escape_routes[k].x_m, r.escape_routes[k].x_m) << where;
+    }
   }
 }
 
@@ -103,8 +127,27 @@ TEST(CudaKernelBodies, OneBatchOfMixedScenesMatchesTheCpuBackendExactly) {
   // Different sizes in one batch, an ego alone (no pairs) in the middle, pedestrians.
   std::vector<Scene> scenes{bench::PaperSceneS1(), bench::PaperSceneS2(),
                             testing::RandomScene(9, 0, 0, false)};
-  for (unsigned seed = 1; seed <= 6; ++seed) scenes.push_back(testing::RandomScene(seed, 4, 2, seed % 2 == 0));
+  for (unsigned seed = 1; seed <= 6; ++seed)
+    scenes.push_back(testing::RandomScene(seed, 4, 2, seed % 2 == 0));
   ExpectBatchSameAsCpu(scenes, "mixed batch");
+}
+
+TEST(CudaKernelBodies, OtherParametersAndDiscriminationScenesMatchTheCpuBackendExactly) {
+  // Another step partition (odd instants, shorter horizon) and the paper-literal models: the
+  // kernel bodies take everything from the hypothesis sets and the layout.
+  std::vector<Scene> scenes{bench::PaperSceneS1()};
+  for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) {
+    if (d.name == "pedestrian-crosses-ttc-1.2" || d.name == "junction-car-crosses-ttc-1.3" ||
+        d.name == "motorway-neighbours-alongside")
+      scenes.push_back(d.scene);
+  }
+  ASSERT_EQ(scenes.size(), 4u) << "discrimination scenes renamed?";
+  Params odd;
+  odd.step_s = 0.03;
+  odd.horizon_s = 1.5;
+  odd.path_sample_times_s = {0.31, 0.77, 1.49};
+  ExpectBatchSameAsCpu(scenes, "odd step and instants", odd);
+  ExpectBatchSameAsCpu(scenes, "paper-literal", ParamsPreset("paper-literal"));
 }
 
 TEST(CudaKernelBodies, ProblemOfSkipsEmptyRanges) {
