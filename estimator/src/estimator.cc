@@ -51,7 +51,7 @@ struct ReachShortcut {
     result->objects = kept.objects;
     result->ego_probability = kept.ego_probability;
     result->ego_collision_probability.assign(n_ego, 0.0);
-    internal::FillEscapeRoutes(kept, params, std::vector<char>(n_ego, 0), result);
+    internal::FinishDecisionOutputs(kept, params, std::vector<char>(n_ego, 0), result);
   }
   void Restore(const internal::Problem& pb, Result* result) const {
     if (!any) return;

@@ -63,11 +63,14 @@ std::vector<char> OutOfReach(const Problem& pb) {
 }
 
 Problem WithoutObjects(const Problem& pb, const std::vector<char>& drop) {
-  Problem out;
-  out.sim = pb.sim;
-  out.ego = pb.ego;
-  out.ego_probability = pb.ego_probability;
-  out.co_offset.push_back(0);
+  // Everything about the ego (and any field added later) is copied; only the collision
+  // objects' parts are rebuilt.
+  Problem out = pb;
+  out.cos.clear();
+  out.objects.clear();
+  out.co_probability.clear();
+  out.co_object_of.clear();
+  out.co_offset.assign(1, 0);
   int offset = 0;
   for (size_t o = 0; o < pb.cos.size(); ++o) {
     if (drop[o]) continue;

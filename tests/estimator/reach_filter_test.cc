@@ -68,6 +68,22 @@ Ego SomeEgo(std::mt19937_64& rng) {
   return e;
 }
 
+// Every field of an escape route, including its manoeuvre (the shortcut once answered from a
+// problem that had lost the ego's profile and lane tables).
+void ExpectSameRoute(const EscapeRoute& a, const EscapeRoute& b, const std::string& what) {
+  EXPECT_EQ(a.ego_trajectory, b.ego_trajectory) << what;
+  EXPECT_EQ(a.sections, b.sections) << what;
+  EXPECT_EQ(a.target_lanes, b.target_lanes) << what;
+  EXPECT_EQ(a.profile_slip, b.profile_slip) << what;
+  EXPECT_EQ(a.profile_accel_mps2, b.profile_accel_mps2) << what;
+  EXPECT_EQ(a.probability, b.probability) << what;
+  EXPECT_EQ(a.collision_probability, b.collision_probability) << what;
+  EXPECT_EQ(a.speed_mps, b.speed_mps) << what;
+  EXPECT_EQ(a.lateral_offset_m, b.lateral_offset_m) << what;
+  EXPECT_EQ(a.steer_rad, b.steer_rad) << what;
+  EXPECT_EQ(a.x_m, b.x_m) << what;
+}
+
 TEST(ReachFilter, EgoReachBoundHoldsForEverySimulatedEgoHypothesis) {
   std::mt19937_64 rng(20261124);
   double tightest = 1e9;  // smallest margin between the bound and a hypothesis at the horizon
@@ -167,8 +183,10 @@ TEST(ReachFilter, ShortcutGivesTheFullEstimateAtTheEdgeOfReach) {
     EXPECT_EQ(a.ego_collision_probability, b.ego_collision_probability) << what;
     EXPECT_EQ(a.collision_free_ego_trajectories, b.collision_free_ego_trajectories) << what;
     ASSERT_EQ(a.escape_routes.size(), b.escape_routes.size()) << what;
+    EXPECT_EQ(a.p_reference, b.p_reference) << what;
+    EXPECT_EQ(a.unavoidability, b.unavoidability) << what;
     for (size_t k = 0; k < a.escape_routes.size(); ++k) {
-      EXPECT_EQ(a.escape_routes[k].ego_trajectory, b.escape_routes[k].ego_trajectory) << what;
+      ExpectSameRoute(a.escape_routes[k], b.escape_routes[k], what);
     }
     const int n_ego = a.counts.ego_trajectories;
     const int a_cols = a.counts.co_trajectories, b_cols = b.counts.co_trajectories;
@@ -244,10 +262,10 @@ TEST(ReachFilter, AnEgoWithNoObjectInReachIsAnsweredWithoutTrajectories) {
     EXPECT_EQ(a.ego_probability, b.ego_probability);
     EXPECT_EQ(a.ego_collision_probability, b.ego_collision_probability);
     ASSERT_EQ(a.escape_routes.size(), b.escape_routes.size());
+    EXPECT_EQ(a.p_reference, b.p_reference);
+    EXPECT_EQ(a.unavoidability, b.unavoidability);
     for (size_t k = 0; k < a.escape_routes.size(); ++k) {
-      EXPECT_EQ(a.escape_routes[k].ego_trajectory, b.escape_routes[k].ego_trajectory);
-      EXPECT_EQ(a.escape_routes[k].sections, b.escape_routes[k].sections);
-      EXPECT_EQ(a.escape_routes[k].profile_accel_mps2, b.escape_routes[k].profile_accel_mps2);
+      ExpectSameRoute(a.escape_routes[k], b.escape_routes[k], "no object in reach");
     }
     EXPECT_EQ(b.times.trajectory_ms, 0.0);  // no trajectory generated
     EXPECT_EQ(b.objects.size(), scene->vehicles.size());
