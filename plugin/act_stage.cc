@@ -30,7 +30,7 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
       continue;
     auto it = state_.find(e.ego);
     if (it == state_.end()) continue;
-    if (it->second.warning) out.warnings.push_back({e.ego, WarningChange::kClose, 0.0});
+    if (it->second.warning) out.warnings.push_back({e.ego, WarningChange::kClose, 0.0, 0.0, 0.0, ""});
     if (it->second.braking && e.kind == EgoEventKind::kTeleportStart)
       release_after_teleport_.insert(e.ego);
     if (e.kind != EgoEventKind::kTeleportStart) release_after_teleport_.erase(e.ego);
@@ -40,7 +40,7 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
   for (size_t k = 0; k < batch.scenes.size(); ++k) {
     const ObjectSnapshot& ego = *batch.egos[k];
     const Result& r = results[k];
-    const double p = r.p_collision;
+    const double p = WarnValue(o.warn_on, r);
     EgoState& s = state_[ego.id];
     if (o.act != Act::kNone) {
       if (p >= o.warn_threshold && !s.warning) {
@@ -50,10 +50,10 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
             {ego.id, WarningChange::kOpen, p, ego.state.x_m, ego.state.y_m, ego.edge});
       } else if (s.warning && p > s.peak) {
         s.peak = p;
-        out.warnings.push_back({ego.id, WarningChange::kPeak, p});
+        out.warnings.push_back({ego.id, WarningChange::kPeak, p, 0.0, 0.0, ""});
       } else if (s.warning && p < o.warn_release) {
         s.warning = false;
-        out.warnings.push_back({ego.id, WarningChange::kClose, p});
+        out.warnings.push_back({ego.id, WarningChange::kClose, p, 0.0, 0.0, ""});
       }
       world_->Publish(ego.id, p, s.warning);
     }
@@ -77,7 +77,9 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
     }
     EgoStep step;
     step.ego = &ego;
-    step.p_collision = p;
+    step.p_collision = r.p_collision;
+    step.p_reference = r.p_reference;
+    step.unavoidability = r.unavoidability;
     step.estimator_ms = r.times.total_ms;
     step.objects = static_cast<int>(r.objects.size());
     for (const ObjectResult& obj : r.objects) step.objects_in_reach += obj.out_of_reach ? 0 : 1;

@@ -20,6 +20,8 @@ namespace criticality::plugin {
 struct EgoStep {
   const ObjectSnapshot* ego{nullptr};
   double p_collision{0.0};
+  double p_reference{0.0};
+  double unavoidability{0.0};
   double estimator_ms{0.0};
   int objects{0};
   int objects_in_reach{0};

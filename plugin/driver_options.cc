@@ -79,6 +79,30 @@ void CheckConfigFile(const std::string& path, const po::options_description& all
 
 }  // namespace
 
+double WarnValue(WarnOn on, const Result& r) {
+  switch (on) {
+    case WarnOn::kPCollision:
+      return r.p_collision;
+    case WarnOn::kPReference:
+      return r.p_reference;
+    case WarnOn::kUnavoidability:
+      return r.unavoidability;
+  }
+  return r.p_collision;
+}
+
+std::string WarnOnName(WarnOn on) {
+  switch (on) {
+    case WarnOn::kPCollision:
+      return "p_collision";
+    case WarnOn::kPReference:
+      return "p_reference";
+    case WarnOn::kUnavoidability:
+      return "unavoidability";
+  }
+  return "?";
+}
+
 std::string ActName(Act act) {
   switch (act) {
     case Act::kNone:
@@ -102,6 +126,8 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
   for (int k = 0; k < argc; ++k) o.command_line += (k ? " " : "") + std::string(argv[k]);
 
   std::string config, act = "warn", backend = "cpu", expect;  // expect: see DriverOptions
+  std::string warn_on = "p_collision";
+  bool no_lateral_controller = false, no_road_model = false;
   std::vector<std::string> events;
   bool no_progress = false, no_shortcut = false;
   po::options_description generic("General");
@@ -140,16 +166,31 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
       "none: only record; warn: record warning episodes, publish the criticality as vehicle "
       "parameter 'criticality' and colour the ego red while warning; brake: warn and also brake "
       "(or follow the best escape route's acceleration) while p >= brake threshold, then hand "
-      "control back to SUMO")("warn-threshold",
-                              po::value(&o.warn_threshold)->default_value(o.warn_threshold),
-                              "p_cra that starts a warning episode")(
+      "control back to SUMO")(
+      "warn-on", po::value(&warn_on)->default_value(warn_on),
+      "the estimate the warning reads: p_collision (the paper's p_cra: the probability that the "
+      "scene ends in a collision of the ego, over all its hypotheses), p_reference (if the ego "
+      "keeps its most probable course) or unavoidability (the least colliding ego hypothesis: 1 "
+      "= nothing helps)")("warn-threshold",
+                         po::value(&o.warn_threshold)->default_value(o.warn_threshold),
+                         "value of the --warn-on estimate that starts a warning episode")(
       "warn-release", po::value(&o.warn_release)->default_value(-1.0, "0.8 x warn threshold"),
-      "p_cra below which a warning episode ends (hysteresis)")(
+      "value below which a warning episode ends (hysteresis)")(
       "brake-threshold", po::value(&o.brake_threshold)->default_value(o.brake_threshold),
-      "p_cra that triggers braking (--act brake)");
+      "value of the --warn-on estimate that triggers braking (--act brake)");
   po::options_description est("Estimator");
   est.add_options()("backend", po::value(&backend)->default_value(backend),
                     "reference | cpu | cuda | auto (cuda when a GPU is usable, else cpu)")(
+      "preset", po::value(&o.preset)->default_value(o.preset),
+      "estimator parameters to start from: default (drivable hypotheses, naturalistic scores) "
+      "or paper-literal (the paper's models and our first scoring, for comparisons); the "
+      "options below change them further")(
+      "no-lateral-controller", po::bool_switch(&no_lateral_controller),
+      "ablation (paper Sec. V-A): no lateral controller, constant open-loop steering per path "
+      "section, so hypotheses may leave the road")(
+      "no-road-model", po::bool_switch(&no_road_model),
+      "ablation (paper Sec. V-A): ignore SUMO's lanes; every vehicle gets virtual lanes along "
+      "its heading")(
       "threads", po::value(&o.estimator.threads)->default_value(0),
       "estimator threads (0 = all cores)")(
       "profiles", po::value(&o.params.profiles)->default_value(o.params.profiles),
@@ -161,7 +202,8 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
       po::value(&o.params.neighbour_lane_samples)->default_value(o.params.neighbour_lane_samples),
       "lateral path samples across each neighbouring lane (paper: 2); ego paths = samples^3")(
       "horizon", po::value(&o.params.horizon_s)->default_value(o.params.horizon_s),
-      "prediction horizon (s)")("step", po::value(&o.params.step_s)->default_value(o.params.step_s),
+      "prediction horizon (s); the path sample instants (paper: 1.0, 1.5, 2.0 s of 2 s) scale "
+      "with it")("step", po::value(&o.params.step_s)->default_value(o.params.step_s),
                                 "prediction step (s)")(
       "range", po::value(&o.range_m)->default_value(o.range_m),
       "vehicles and pedestrians within this distance of an ego are considered (m)")(
@@ -259,6 +301,31 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
   else
     throw std::invalid_argument("--act '" + act + "': use none, warn or brake");
   o.estimator.backend = ParseBackend(backend);
+  if (warn_on == "p_collision")
+    o.warn_on = WarnOn::kPCollision;
+  else if (warn_on == "p_reference")
+    o.warn_on = WarnOn::kPReference;
+  else if (warn_on == "unavoidability")
+    o.warn_on = WarnOn::kUnavoidability;
+  else
+    throw std::invalid_argument("--warn-on '" + warn_on +
+                                "': use p_collision, p_reference or unavoidability");
+  {
+    // The preset, with the estimator options given explicitly on top of it.
+    Params p = ParamsPreset(o.preset);  // InputError names the accepted presets
+    auto given = [&](const char* name) { return vm.count(name) && !vm[name].defaulted(); };
+    if (given("profiles")) p.profiles = o.params.profiles;
+    if (given("own-lane-samples")) p.own_lane_samples = o.params.own_lane_samples;
+    if (given("neighbour-lane-samples")) p.neighbour_lane_samples = o.params.neighbour_lane_samples;
+    if (given("horizon")) {  // the path sample instants keep their share of the horizon
+      for (double& t : p.path_sample_times_s) t *= o.params.horizon_s / p.horizon_s;
+      p.horizon_s = o.params.horizon_s;
+    }
+    if (given("step")) p.step_s = o.params.step_s;
+    if (no_lateral_controller) p.lateral_controller = false;
+    if (no_road_model) p.road_model = false;
+    o.params = p;
+  }
   if (!expect.empty() && expect != "collision" && expect != "no-collision") {
     throw std::invalid_argument("--expect '" + expect + "': use collision or no-collision");
   }

@@ -7,11 +7,17 @@
 
 #include "criticality/estimator.h"
 #include "criticality/params.h"
+#include "criticality/result.h"
 #include "plugin/scenario_event.h"
 
 namespace criticality::plugin {
 
 enum class Act { kNone, kWarn, kBrake };
+enum class WarnOn { kPCollision, kPReference, kUnavoidability };
+
+/** The estimate a WarnOn names, from a result. */
+double WarnValue(WarnOn on, const Result& r);
+std::string WarnOnName(WarnOn on);
 
 struct DriverOptions {
   std::string sumo_config;             ///< -c; relative paths in a --config file are relative to it
@@ -19,8 +25,14 @@ struct DriverOptions {
   std::vector<std::string> egos;
   bool all_vehicles{false};
   Act act{Act::kWarn};
-  double warn_threshold{0.5};
-  double brake_threshold{0.8};
+  /** Which estimate the warning (and --act brake) reads: p_collision (the paper's p_cra, the
+   *  default: estimator/ALGORITHM.md "Outputs that serve decisions" says why), p_reference or
+   *  unavoidability. */
+  WarnOn warn_on{WarnOn::kPCollision};
+  double warn_threshold{0.9};
+  double brake_threshold{0.9};
+  /** Params preset the estimator parameters start from (criticality::ParamsPresetNames()). */
+  std::string preset{"default"};
   /** A warning episode ends when p_cra falls below this (hysteresis, so that one approach is
    *  one episode); negative: 0.8 x warn_threshold. */
   double warn_release{-1.0};

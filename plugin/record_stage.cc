@@ -92,6 +92,8 @@ void RecordStage::Run(const Observation& obs, const SceneBatch& batch, const Act
     row.time_s = t;
     row.ego = s.ego->id;
     row.p_collision = s.p_collision;
+    row.p_reference = s.p_reference;
+    row.unavoidability = s.unavoidability;
     row.estimator_ms = s.estimator_ms;
     row.objects = s.objects;
     row.objects_in_reach = s.objects_in_reach;

@@ -19,7 +19,8 @@ CREATE TABLE runs(
 CREATE TABLE steps(
   run_id INTEGER NOT NULL REFERENCES runs(id), time_s REAL NOT NULL, ego TEXT NOT NULL,
   p_collision REAL NOT NULL, estimator_ms REAL NOT NULL, objects INTEGER NOT NULL,
-  objects_in_reach INTEGER NOT NULL, speed_mps REAL NOT NULL, acting INTEGER NOT NULL);
+  objects_in_reach INTEGER NOT NULL, speed_mps REAL NOT NULL, acting INTEGER NOT NULL,
+  p_reference REAL NOT NULL, unavoidability REAL NOT NULL);
 CREATE TABLE warnings(
   id INTEGER PRIMARY KEY, run_id INTEGER NOT NULL REFERENCES runs(id), ego TEXT NOT NULL,
   start_s REAL NOT NULL, end_s REAL, peak_p REAL NOT NULL, x_m REAL, y_m REAL, edge TEXT);
@@ -81,7 +82,7 @@ ResultsDb::ResultsDb(const std::string& path) : path_(path) {
     Exec("PRAGMA journal_mode=WAL");
     Exec("PRAGMA synchronous=NORMAL");
     Exec(kSchema);
-    step_ = Prepare("INSERT INTO steps VALUES(?,?,?,?,?,?,?,?,?)");
+    step_ = Prepare("INSERT INTO steps VALUES(?,?,?,?,?,?,?,?,?,?,?)");
     open_warning_ = Prepare(
         "INSERT INTO warnings(run_id,ego,start_s,end_s,peak_p,x_m,y_m,edge) "
         "VALUES(?,?,?,NULL,?,?,?,?)");
@@ -194,6 +195,8 @@ void ResultsDb::AddStep(const StepRow& r) {
   sqlite3_bind_int(step_, 7, r.objects_in_reach);
   sqlite3_bind_double(step_, 8, r.speed_mps);
   sqlite3_bind_int(step_, 9, r.acting ? 1 : 0);
+  sqlite3_bind_double(step_, 10, r.p_reference);
+  sqlite3_bind_double(step_, 11, r.unavoidability);
   Step(step_, "step");
 }
 

@@ -21,6 +21,8 @@ struct StepRow {
   double time_s{0.0};
   std::string ego;
   double p_collision{0.0};
+  double p_reference{0.0};
+  double unavoidability{0.0};
   double estimator_ms{0.0};
   int objects{0};           ///< objects in the scene
   int objects_in_reach{0};  ///< of those, not dropped by the exact reach shortcut

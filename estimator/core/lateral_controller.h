@@ -29,6 +29,9 @@ struct ControllerLimits {
   double preview_s_per_mps{0.008};
   double preview_min_s{0.05};
   double preview_max_s{0.4};
+  /** false: the paper's "controller off" ablation (Params::lateral_controller): open-loop
+   *  steering set once per path section, see OpenLoopSteer. */
+  bool feedback{true};
 };
 
 /** The paper's steering law; returns degrees at the front wheels. */
@@ -66,6 +69,20 @@ CRIT_HD double SteeringCommand(const ControllerLimits& c, const Parabola& sectio
                                const MotionState& s, double previous_steer, double tau) {
   const double course = s.yaw + s.beta;
   return SteeringCommand(c, section, s, previous_steer, tau, std::cos(course), std::sin(course));
+}
+
+/** Open-loop steering for the "controller off" ablation: the constant steering angle of a pure
+ *  pursuit arc from the vehicle (state `s`, local frame) to the point of `section` that lies
+ *  max(v * lookahead_s, 2 m) ahead along the current heading; clamped to the angle limit. It
+ *  is set once when a section starts and then held (no feedback on the path errors). */
+CRIT_HD double OpenLoopSteer(const ControllerLimits& c, const Parabola& section, const MotionState& s,
+                             double wheelbase, double lookahead_s) {
+  const double ahead = Max(s.v * lookahead_s, 2.0);
+  const double xa = s.x + ahead * std::cos(s.yaw);
+  const double dx = xa - s.x, dy = section.Eval(xa) - s.y;
+  const double alpha = WrapAngle(std::atan2(dy, dx) - s.yaw);
+  const double kappa = 2.0 * std::sin(alpha) / std::sqrt(dx * dx + dy * dy);
+  return Clamp(std::atan(wheelbase * kappa), -c.max_steer_rad, c.max_steer_rad);
 }
 
 }  // namespace criticality::core

@@ -46,6 +46,10 @@ struct SimulationState {
   MotionState s;      ///< in the object's local frame
   double steer{0.0};  ///< last commanded steering angle
   int instant{0};     ///< current sample instant (path section)
+  /** Controller off (ControllerLimits::feedback false): the held open-loop steering angle and
+   *  the section it was set for (-1: before the lateral latency; -2: none yet). */
+  double held_steer{0.0};
+  int held_section{-2};
 };
 
 CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h,
@@ -83,14 +87,27 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
     st->instant = k;
     // Lateral reaction latency: until then the vehicle follows its reference path; its
     // hypothesis' path section after it.
-    const Parabola& section = t < h.steer_latency
-                                  ? h.reference_path
-                                  : h.section[st->instant][SectionOfPath(h, path, st->instant)];
+    const bool latent = t < h.steer_latency;
+    const int lateral = SectionOfPath(h, path, st->instant);
+    const Parabola& section = latent ? h.reference_path : h.section[st->instant][lateral];
     // Trig of yaw and sideslip once per step; the course by the angle-sum identities.
     double cb = std::cos(s.beta), sb = std::sin(s.beta);
     const double cy = std::cos(s.yaw), sy = std::sin(s.yaw);
-    st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau, cy * cb - sy * sb,
-                                sy * cb + cy * sb);
+    if (cfg.controller.feedback) {
+      st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau, cy * cb - sy * sb,
+                                  sy * cb + cy * sb);
+    } else {  // the "controller off" ablation: one open-loop angle per section, held
+      const int key = latent ? -1 : st->instant * kMaxLateralSamples + lateral;
+      if (key != st->held_section) {
+        st->held_section = key;
+        st->held_steer =
+            latent ? InitialSteer(h, cfg.controller)
+                   : OpenLoopSteer(cfg.controller, section, s, h.vehicle.lf_m + h.vehicle.lr_m,
+                                   Max(h.instant_time[st->instant] - t, 0.5));
+      }
+      const double rate = cfg.controller.max_steer_rate_radps * tau;
+      st->steer = Clamp(st->held_steer, st->steer - rate, st->steer + rate);
+    }
     double longitudinal = RampedValue(t, h.profile_start, target, h.latency, h.rate);
     const bool kinematic = s.v < h.seam_speed;
     StateDerivative d;

@@ -372,10 +372,13 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   pb.sim.n_steps = params.TimeSteps();
   pb.sim.controller =
       core::ControllerLimits{params.max_steer_rad, params.max_steer_rate_radps,
-                             params.preview_s_per_mps, params.preview_min_s, params.preview_max_s};
+                             params.preview_s_per_mps, params.preview_min_s, params.preview_max_s,
+                             params.lateral_controller};
 
   // Street data: the ego's lanes (virtual own lane when missing), fitted in its frame.
-  const LaneSet ego_lanes = CompleteEgoLanes(scene.ego, params);
+  const LaneSet ego_lanes = params.road_model
+                                ? CompleteEgoLanes(scene.ego, params)
+                                : VirtualLaneSet(scene.ego.state, params.virtual_lane_width_m);
   const FittedLanes ego_fitted = FitLanes(ego_lanes, "scene.ego.lanes");
 
   // The ego: two-track model, every combination of path sections.
@@ -423,7 +426,9 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
                                ? AssociateLane(ego_fitted, X_EV.x, X_EV.y)
                                : LaneIndex::kNone;
     info.lane = static_cast<int>(lane);
-    LaneSet lanes = v.lanes ? *v.lanes : EgoLanesSeenBy(ego_lanes, X_EV, lane);
+    LaneSet lanes = !params.road_model ? VirtualLaneSet(v.state, params.virtual_lane_width_m)
+                    : v.lanes          ? *v.lanes
+                                       : EgoLanesSeenBy(ego_lanes, X_EV, lane);
     if (!lanes.own) lanes.own = VirtualLane(v.state, params.virtual_lane_width_m);
     const FittedLanes fitted = FitLanes(lanes, where + ".lanes");
     const std::vector<ProfileScore> profiles = SetVehicleProfiles(params, &h);

@@ -103,6 +103,21 @@ Lane VirtualLane(const ObjectState& state, double width) {
   return lane;
 }
 
+LaneSet VirtualLaneSet(const ObjectState& state, double width) {
+  LaneSet set;
+  set.own = VirtualLane(state, width);
+  auto shifted = [&](const Lane& lane, double dy) {
+    Lane out = lane;
+    for (LaneDivider* d : {&out.left, &out.right}) {
+      for (Point2& p : d->points) p.y += dy;
+    }
+    return out;
+  };
+  set.left = shifted(*set.own, width);
+  set.right = shifted(*set.own, -width);
+  return set;
+}
+
 FittedLanes FitLanes(const LaneSet& lanes, const std::string& where) {
   FittedLanes f;
   f.own = FitLane(lanes.own, where + ".own");

@@ -36,6 +36,10 @@ enum class LaneIndex : int { kRight = -1, kOwn = 0, kLeft = 1, kNone = 2 };
  *  lane width). */
 Lane VirtualLane(const ObjectState& state, double width);
 
+/** The "no road model" ablation (Params::road_model false): a virtual own lane with a virtual
+ *  lane of the same width on each side, no counter traffic. */
+LaneSet VirtualLaneSet(const ObjectState& state, double width);
+
 /** Fits every divider; throws InputError naming `where` (e.g. "scene.ego.lanes.left") when a
  *  divider's points do not define y(x) or the lane has no positive width at x = 0. */
 FittedLanes FitLanes(const LaneSet& lanes, const std::string& where);

@@ -110,6 +110,13 @@ std::vector<Variant> Variants() {
   odd_step.horizon_s = 1.5;
   odd_step.path_sample_times_s = {0.31, 0.77, 1.49};
   v.push_back({"step 0.03 s, horizon 1.5 s, odd instants", odd_step});
+  // The paper's ablations: open-loop steering per section, and virtual lanes only.
+  Params open_loop;
+  open_loop.lateral_controller = false;
+  v.push_back({"lateral controller off", open_loop});
+  Params no_road;
+  no_road.road_model = false;
+  v.push_back({"road model off", no_road});
   return v;
 }
 
@@ -155,6 +162,8 @@ TEST(BackendsAgree, FourSampleInstants) { ExpectFamiliesAgree(Variants()[3]); }
 TEST(BackendsAgree, AnotherStep) { ExpectFamiliesAgree(Variants()[4]); }
 TEST(BackendsAgree, ShorterHorizon) { ExpectFamiliesAgree(Variants()[5]); }
 TEST(BackendsAgree, OddStepHorizonAndInstants) { ExpectFamiliesAgree(Variants()[6]); }
+TEST(BackendsAgree, LateralControllerOff) { ExpectFamiliesAgree(Variants()[7]); }
+TEST(BackendsAgree, RoadModelOff) { ExpectFamiliesAgree(Variants()[8]); }
 
 TEST(BackendsAgree, AllDiscriminationScenes) {
   for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) {

@@ -93,6 +93,51 @@ TEST(DriverOptions, ScenarioMetadata) {
                std::invalid_argument);
 }
 
+TEST(DriverOptions, PresetAblationsAndWarningEstimate) {
+  const std::vector<const char*> base{"--connect", "h:1", "--ego", "e", "--output", "x"};
+  auto with = [&](std::vector<const char*> extra) {
+    std::vector<const char*> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return Parse(args).options;
+  };
+  // Defaults: the calibrated parameters, warning on p_collision >= 0.9.
+  const DriverOptions d = with({});
+  EXPECT_EQ(d.warn_on, WarnOn::kPCollision);
+  EXPECT_EQ(d.warn_threshold, 0.9);
+  EXPECT_TRUE(d.params.lateral_controller);
+  EXPECT_TRUE(d.params.road_model);
+  EXPECT_EQ(d.params.scoring, Params{}.scoring);
+  // The preset, and explicit estimator options on top of it.
+  const DriverOptions p = with({"--preset", "paper-literal", "--profiles", "5"});
+  EXPECT_EQ(p.params.scoring, ParamsPreset("paper-literal").scoring);
+  EXPECT_FALSE(p.params.friction_limited_lateral);
+  EXPECT_EQ(p.params.profiles, 5);
+  const DriverOptions a = with({"--no-lateral-controller", "--no-road-model"});
+  EXPECT_FALSE(a.params.lateral_controller);
+  EXPECT_FALSE(a.params.road_model);
+  // A shorter horizon scales the path sample instants (1.0, 1.5, 2.0 of 2 s).
+  const DriverOptions h = with({"--horizon", "1.5"});
+  EXPECT_EQ(h.params.horizon_s, 1.5);
+  EXPECT_EQ(h.params.path_sample_times_s, (std::vector<double>{0.75, 1.125, 1.5}));
+  EXPECT_EQ(with({"--warn-on", "unavoidability"}).warn_on, WarnOn::kUnavoidability);
+  Result r;
+  r.p_collision = 0.1;
+  r.p_reference = 0.2;
+  r.unavoidability = 0.3;
+  EXPECT_EQ(WarnValue(WarnOn::kPCollision, r), 0.1);
+  EXPECT_EQ(WarnValue(WarnOn::kPReference, r), 0.2);
+  EXPECT_EQ(WarnValue(WarnOn::kUnavoidability, r), 0.3);
+  for (std::vector<const char*> bad :
+       {std::vector<const char*>{"--preset", "fast"}, {"--warn-on", "p"}}) {
+    try {
+      with(bad);
+      ADD_FAILURE() << bad[0];
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(bad[1]), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(DriverOptions, BadOptionsAreOneLineErrors) {
   EXPECT_THROW(Parse({"--ego", "e", "--output", "x.sqlite"}),
                std::invalid_argument);  // no sumo config

@@ -80,9 +80,23 @@ struct Params {
    *  range is about 1 g). */
   double friction{1.0};
 
+  /** The paper's ablation "controller off" (Sec. V-A, Fig. "results"): with false, no lateral
+   *  controller tracks the path sections. Steering keeps its initial value until the lateral
+   *  latency, then, at the start of each path section, an open-loop steering angle is set once
+   *  (pure pursuit towards the section's point one section span ahead) and held (rate-limited):
+   *  constant steering in the manner the paper criticises (Broadhurst et al.), so that
+   *  hypotheses leave the road. For evaluations only; default true. */
+  bool lateral_controller{true};
+
   // --- Street data (paper Sec. IV-A) ---
   /** Width of the virtual own lane when the sensors deliver none. RAA (FGSV 2008): 3.5-3.75 m. */
   double virtual_lane_width_m{3.5};
+  /** The paper's "without road modelling" (Sec. V-A: 300 ms anticipation instead of 932): with
+   *  false, every lane in the scene is ignored; the ego and every vehicle get a virtual own lane
+   *  (virtual_lane_width_m, curving with yaw rate / speed) with a virtual lane of the same width
+   *  on each side, so the number of hypotheses stays the same but they know nothing of the road
+   *  (its curves, which lanes exist, counter traffic). For evaluations only; default true. */
+  bool road_model{true};
 
   // --- Drivability (DESIGN.md: every hypothesis must be drivable). The paper asks for drivable
   // trajectories but leaves these limits open; ParamsPreset("paper-literal") turns them off. ---
