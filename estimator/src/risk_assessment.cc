@@ -28,11 +28,11 @@ void AssessRisk(const Problem& pb, const Params& params, const std::int16_t* fir
     std::vector<double> contribution(n_co), hit_mass(n_obj);
     for (int i = begin; i < end; ++i) {
       int n_events = 0;
-      ego_col[i] = core::SplitEgoRisk(first_step + static_cast<size_t>(i) * n_co, n_co, steps,
-                                      n_obj, pb.co_probability.data(), pb.co_object_of.data(),
-                                      histogram.data(), events.data(), contribution.data(),
-                                      hit_mass.data(), by_step.data() + static_cast<size_t>(i) * steps,
-                                      by_object.data() + static_cast<size_t>(i) * n_obj, &n_events);
+      ego_col[i] = core::SplitEgoRisk(
+          first_step + static_cast<size_t>(i) * n_co, n_co, steps, n_obj, pb.co_probability.data(),
+          pb.co_object_of.data(), histogram.data(), events.data(), contribution.data(),
+          hit_mass.data(), by_step.data() + static_cast<size_t>(i) * steps,
+          by_object.data() + static_cast<size_t>(i) * n_obj, &n_events);
       ego_hit[i] = n_events > 0;
     }
   });
