@@ -83,6 +83,14 @@ void SetPose(const ObjectState& s, double length, double width, core::Hypothesis
   h->half_width = 0.5 * width;
 }
 
+// The acceleration of the reference hypothesis: the current one, or the expected one where the
+// caller gives it and it is lower (Params::expected_accel_reference).
+double ReferenceAccel(const ObjectState& s, const Params& p) {
+  if (p.expected_accel_reference && s.expected_accel_mps2)
+    return std::fmin(s.accel_mps2, *s.expected_accel_mps2);
+  return s.accel_mps2;
+}
+
 // The path part of the scores: d_path (the lateral part of d_str) and c_com * c_cou.
 struct PathScore {
   double d_path{1.0};
@@ -99,7 +107,8 @@ struct ProfileScore {
 // Fills the lateral part of a vehicle's hypothesis set and scores its paths; `lanes` of the
 // ego's lane samples (-1, 0, +1) when asked.
 std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool combine,
-                                core::HypothesisSet* h, std::vector<int>* sample_lanes = nullptr) {
+                                double a_ref, core::HypothesisSet* h,
+                                std::vector<int>* sample_lanes = nullptr) {
   const std::vector<LateralSample> samples = LateralSamples(lanes, p);
   const int n_lat = static_cast<int>(samples.size());
   const int n_inst = static_cast<int>(p.path_sample_times_s.size());
@@ -127,7 +136,7 @@ std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool 
   h->reference_path = centre;
   std::vector<double> offset(static_cast<size_t>(n_inst) * n_lat);
   for (int k = 0; k < n_inst; ++k) {
-    const double x = ReferenceDistance(h->v0, h->accel0, p.path_sample_times_s[k]);
+    const double x = ReferenceDistance(h->v0, a_ref, p.path_sample_times_s[k]);
     for (int l = 0; l < n_lat; ++l) {
       offset[k * n_lat + l] = std::fabs(samples[l].curve.Eval(x) - centre.Eval(x));
     }
@@ -269,7 +278,7 @@ void SetLongitudinalScores(const core::HypothesisSet& h, int reference, double s
 // The longitudinal part of a vehicle's hypothesis set (the ego: two-track, driven by slip or
 // by tyre force demand; others: one-track accelerations) and its profile scores. `accel` gets
 // each profile's target acceleration and `slip` its slip (the ego's, for reports).
-std::vector<ProfileScore> SetVehicleProfiles(const Params& p, core::HypothesisSet* h,
+std::vector<ProfileScore> SetVehicleProfiles(const Params& p, double a_ref, core::HypothesisSet* h,
                                              std::vector<double>* accel = nullptr,
                                              std::vector<double>* slip = nullptr) {
   h->n_profiles = p.profiles;
@@ -282,9 +291,9 @@ std::vector<ProfileScore> SetVehicleProfiles(const Params& p, core::HypothesisSe
   std::vector<ProfileScore> scores(p.profiles);
   std::vector<double> a;
   int reference =
-      ProfileAccelerations(p.profiles, p.vehicle_accel_min_mps2, p.vehicle_accel_max_mps2,
-                           h->accel0, p.profiles_include_current_accel, false, &a);
-  const double current = core::Clamp(h->accel0, p.vehicle_accel_min_mps2, p.vehicle_accel_max_mps2);
+      ProfileAccelerations(p.profiles, p.vehicle_accel_min_mps2, p.vehicle_accel_max_mps2, a_ref,
+                           p.profiles_include_current_accel, false, &a);
+  const double current = core::Clamp(a_ref, p.vehicle_accel_min_mps2, p.vehicle_accel_max_mps2);
   double scale = 1.0;  // profile value -> m/s^2
   if (ego && !p.ego_profiles_in_accel) {
     // Paper: longitudinal slip, equally spaced as the accelerations are; no reference profile.
@@ -313,8 +322,8 @@ std::vector<ProfileScore> SetVehicleProfiles(const Params& p, core::HypothesisSe
       h->profile_start = core::Clamp(h->accel0 / mu_g, -1.0, 1.0);
       h->rate = p.jerk_mps3 / mu_g;
       for (int k = 0; k < p.profiles; ++k) {
-        h->profile_target[k] =
-            k == reference ? h->profile_start : core::Clamp(a[k] / mu_g, -1.0, 1.0);
+        h->profile_target[k] = k == reference ? core::Clamp(a_ref / mu_g, -1.0, 1.0)
+                                              : core::Clamp(a[k] / mu_g, -1.0, 1.0);
       }
     } else {
       h->profile_start = h->accel0;
@@ -370,10 +379,9 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   Problem pb;
   pb.sim.tau = params.step_s;
   pb.sim.n_steps = params.TimeSteps();
-  pb.sim.controller =
-      core::ControllerLimits{params.max_steer_rad, params.max_steer_rate_radps,
-                             params.preview_s_per_mps, params.preview_min_s, params.preview_max_s,
-                             params.lateral_controller};
+  pb.sim.controller = core::ControllerLimits{params.max_steer_rad,     params.max_steer_rate_radps,
+                                             params.preview_s_per_mps, params.preview_min_s,
+                                             params.preview_max_s,     params.lateral_controller};
 
   // Street data: the ego's lanes (virtual own lane when missing), fitted in its frame.
   const LaneSet ego_lanes = params.road_model
@@ -390,9 +398,11 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     SetPose(scene.ego.state, scene.ego.length_m, scene.ego.width_m, &h);
     h.seam_speed = core::SeamSpeed(h.vehicle, params.step_s, params.euler_stability_factor);
     const std::vector<ProfileScore> profiles =
-        SetVehicleProfiles(params, &h, &pb.ego_profile_accel, &pb.ego_profile_slip);
+        SetVehicleProfiles(params, ReferenceAccel(scene.ego.state, params), &h,
+                           &pb.ego_profile_accel, &pb.ego_profile_slip);
     const std::vector<PathScore> paths =
-        SetPaths(ego_fitted, params, /*combine=*/true, &h, &pb.ego_sample_lane);
+        SetPaths(ego_fitted, params, /*combine=*/true, ReferenceAccel(scene.ego.state, params), &h,
+                 &pb.ego_sample_lane);
     AppendProbabilities(profiles, paths, params, &pb.ego_probability);
     pb.ego_lane_centre = ego_fitted.own->Centre();
     for (size_t i = 1; i < pb.ego_probability.size(); ++i) {
@@ -431,8 +441,9 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
                                        : EgoLanesSeenBy(ego_lanes, X_EV, lane);
     if (!lanes.own) lanes.own = VirtualLane(v.state, params.virtual_lane_width_m);
     const FittedLanes fitted = FitLanes(lanes, where + ".lanes");
-    const std::vector<ProfileScore> profiles = SetVehicleProfiles(params, &h);
-    const std::vector<PathScore> paths = SetPaths(fitted, params, /*combine=*/false, &h);
+    const double a_ref = ReferenceAccel(v.state, params);
+    const std::vector<ProfileScore> profiles = SetVehicleProfiles(params, a_ref, &h);
+    const std::vector<PathScore> paths = SetPaths(fitted, params, /*combine=*/false, a_ref, &h);
     AppendProbabilities(profiles, paths, params, &pb.co_probability);
     info.first_trajectory = offset;
     info.trajectories = h.Trajectories();

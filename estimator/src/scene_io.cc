@@ -22,6 +22,10 @@ void WriteHeight(std::ostream& out, const std::optional<double>& h) {
     out << " -";
 }
 
+void WriteExpected(std::ostream& out, const ObjectState& s) {
+  if (s.expected_accel_mps2) out << "expected-accel " << *s.expected_accel_mps2 << '\n';
+}
+
 void WriteLanes(std::ostream& out, const LaneSet& lanes) {
   auto one = [&](const char* name, const std::optional<Lane>& lane) {
     if (!lane) return;
@@ -85,6 +89,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
   out << ' ' << scene.ego.length_m << ' ' << scene.ego.width_m;
   WriteHeight(out, scene.ego.height_m);
   out << '\n';
+  WriteExpected(out, scene.ego.state);
   WriteLanes(out, scene.ego.lanes);
   for (const Vehicle& v : scene.vehicles) {
     out << "vehicle " << v.id;
@@ -92,6 +97,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
     out << ' ' << v.length_m << ' ' << v.width_m;
     WriteHeight(out, v.height_m);
     out << ' ' << (v.lanes ? 1 : 0) << '\n';
+    WriteExpected(out, v.state);
     if (v.lanes) WriteLanes(out, *v.lanes);
   }
   for (const Pedestrian& p : scene.pedestrians) {
@@ -104,6 +110,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
 Scene ReadScene(std::istream& in, const std::string& source) {
   Scene scene;
   LaneSet* lanes = nullptr;
+  ObjectState* state = nullptr;  // of the last ego or vehicle, for 'expected-accel'
   bool header = false, ego = false;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
@@ -129,6 +136,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       scene.ego.width_m = r.Num();
       scene.ego.height_m = r.Height();
       lanes = &scene.ego.lanes;
+      state = &scene.ego.state;
       ego = true;
     } else if (kind == "vehicle") {
       Vehicle v;
@@ -141,6 +149,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       if (has_lanes) v.lanes = LaneSet{};
       scene.vehicles.push_back(std::move(v));
       lanes = has_lanes ? &*scene.vehicles.back().lanes : nullptr;
+      state = &scene.vehicles.back().state;
     } else if (kind == "pedestrian") {
       Pedestrian p;
       p.id = r.Word();
@@ -149,6 +158,10 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       p.width_m = r.Num();
       scene.pedestrians.push_back(std::move(p));
       lanes = nullptr;
+      state = nullptr;
+    } else if (kind == "expected-accel") {
+      if (!state) throw InputError(r.where + ": 'expected-accel' must follow an ego or a vehicle");
+      state->expected_accel_mps2 = r.Num();
     } else if (kind == "lane") {
       if (!lanes)
         throw InputError(r.where + ": 'lane' must follow an ego or a vehicle with LANES 1");
@@ -171,7 +184,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
         throw InputError(r.where + ": lane '" + which + "' must be own, left or right");
     } else {
       throw InputError(r.where + ": unknown record '" + kind +
-                       "' (ego, vehicle, pedestrian, lane)");
+                       "' (ego, vehicle, pedestrian, lane, expected-accel)");
     }
     if (r.next != r.words.size()) throw InputError(r.where + ": too many values");
   }

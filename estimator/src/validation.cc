@@ -40,6 +40,7 @@ void ValidateState(const std::string& where, const ObjectState& s) {
   if (s.speed_mps < 0.0) Fail(where + ".speed_mps", s.speed_mps, "must be >= 0");
   if (s.speed_mps > 150.0) Fail(where + ".speed_mps", s.speed_mps, "must be <= 150 m/s");
   RequireFinite(where + ".accel_mps2", s.accel_mps2);
+  if (s.expected_accel_mps2) RequireFinite(where + ".expected_accel_mps2", *s.expected_accel_mps2);
   RequireFinite(where + ".yaw_rate_radps", s.yaw_rate_radps);
   RequireFinite(where + ".sideslip_rad", s.sideslip_rad);
   if (std::fabs(s.sideslip_rad) > 1.0)
@@ -168,6 +169,7 @@ Params ParamsPreset(const std::string& name) {
     p.power_limited_drive = false;
     p.ego_profiles_in_accel = false;
     p.profiles_include_current_accel = false;
+    p.expected_accel_reference = false;
     p.scoring = Params::Scoring::kPaperLiteral;
     p.w_acc = 1.0;
     p.w_str = 1.0;

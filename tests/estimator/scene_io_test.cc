@@ -28,6 +28,21 @@ TEST(SceneIo, RoundTripGivesTheSameEstimate) {
   }
 }
 
+TEST(SceneIo, ExpectedAccelerationsRoundTrip) {
+  Scene scene = testing::RandomScene(5, 3, 1, true);
+  scene.ego.state.expected_accel_mps2 = -2.25;
+  scene.vehicles[1].state.expected_accel_mps2 = -4.5;
+  std::stringstream file;
+  WriteScene(file, scene);
+  const Scene back = ReadScene(file);
+  ASSERT_EQ(back.vehicles.size(), 3u);
+  EXPECT_EQ(back.ego.state.expected_accel_mps2, std::optional<double>(-2.25));
+  EXPECT_FALSE(back.vehicles[0].state.expected_accel_mps2.has_value());
+  EXPECT_EQ(back.vehicles[1].state.expected_accel_mps2, std::optional<double>(-4.5));
+  EXPECT_FALSE(back.vehicles[2].state.expected_accel_mps2.has_value());
+  EXPECT_EQ(back.vehicles[1].lanes.has_value(), scene.vehicles[1].lanes.has_value());
+}
+
 TEST(SceneIo, BadFilesNameTheLine) {
   auto error = [](const std::string& text) {
     std::istringstream in(text);
@@ -45,6 +60,9 @@ TEST(SceneIo, BadFilesNameTheLine) {
   EXPECT_NE(error("criticality-scene 1\npedestrian p 0 0 0 1 0 0 0 .5 .5\nlane own 0 0 0 1 0 2 0 0 "
                   "1 1 1 2 1\n")
                 .find("f.scene:3"),
+            std::string::npos);
+  EXPECT_NE(error("criticality-scene 1\npedestrian p 0 0 0 1 0 0 0 .5 .5\nexpected-accel -1\n")
+                .find("f.scene:3: 'expected-accel' must follow"),
             std::string::npos);
   EXPECT_THROW(ReadSceneFile("/nonexistent.scene"), InputError);
 }

@@ -140,6 +140,17 @@ struct Params {
    *  hypothesis of the paper ("keep driving with the current acceleration") is one of the
    *  hypotheses. Project choice; paper-literal: false (the zero profile, "cruising"). */
   bool profiles_include_current_accel{true};
+  /** Where the caller gives an object's expected acceleration (ObjectState::
+   *  expected_accel_mps2: what its driver is expected to do about a slower vehicle ahead or a
+   *  stop line) and it is below the current acceleration, it replaces the current acceleration
+   *  as the reference: the profile sample nearest to it becomes it, and the scores measure
+   *  deviations from it. The paper's reference, "keep the current acceleration", assumes
+   *  nobody reacts: a car rolling up to a queue at a red light then "hits" the last car in
+   *  every likely hypothesis, and both get warned (the largest source of false alarms in
+   *  city traffic, bench/RESULTS.md). Drivers react to what is ahead of them; hypotheses
+   *  around the expected reaction keep the ones in which they do not, with their lower
+   *  scores. Project choice; paper-literal: false. */
+  bool expected_accel_reference{true};
 
   // --- Scoring (paper Sec. IV-D-1): n_h = (w_acc n_acc + w_str d_str) / (c_com c_cou) ---
   /** Which functions fill the paper's formula. kNaturalistic (default): Gaussian deviation

@@ -56,6 +56,12 @@ struct ObjectState {
   double accel_mps2{0.0};      ///< current longitudinal acceleration
   double yaw_rate_radps{0.0};  ///< current yaw rate
   double sideslip_rad{0.0};    ///< current sideslip angle beta (0 when unknown)
+  /** The longitudinal acceleration its driver is expected to choose next, when the caller knows
+   *  something that asks for it: a slower vehicle ahead in its lane (car following), a stop line
+   *  it must stop at. When set and below accel_mps2, it is the reference ("most likely")
+   *  hypothesis' acceleration and the centre of the acceleration scores instead of the current
+   *  acceleration (Params::expected_accel_reference). Vehicles and the ego only. */
+  std::optional<double> expected_accel_mps2;
 };
 
 /** The vehicle whose criticality is estimated. Simulated with the two-track model. */

@@ -1,0 +1,30 @@
+#include "car_following.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace criticality::plugin {
+
+std::optional<double> CarFollowingAccel(double speed_mps, const Leader& leader,
+                                        double normal_decel_mps2) {
+  constexpr double kMinGap = 0.1;  // m: at or inside minGap the follower brakes as hard as it may
+  const double gap = std::max(leader.gap_m, kMinGap);
+  const double closing = speed_mps - leader.speed_mps;
+  const bool leader_braking = leader.accel_mps2 < 0.0 && leader.speed_mps > 0.0;
+  if (closing <= 0.0 && !leader_braking) return std::nullopt;
+  double needed = 0.0;
+  // The leader keeps its speed: match it within the gap.
+  if (closing > 0.0) needed = -closing * closing / (2.0 * gap);
+  // The leader brakes to a stop at its current deceleration: stop behind it.
+  if (leader_braking) {
+    const double leader_stop = leader.speed_mps * leader.speed_mps / (2.0 * -leader.accel_mps2);
+    needed = std::min(needed, -speed_mps * speed_mps / (2.0 * (gap + leader_stop)));
+  }
+  return std::max(needed, -normal_decel_mps2);
+}
+
+double LeaderLookAhead(double speed_mps) {
+  return std::clamp(speed_mps * speed_mps / 2.0, 20.0, 250.0);
+}
+
+}  // namespace criticality::plugin

@@ -1,0 +1,86 @@
+// The expected acceleration as the reference hypothesis (Params::expected_accel_reference,
+// ObjectState::expected_accel_mps2): a driver closing in on a stopped car is expected to
+// brake for it. Without that expectation the paper's reference ("keep the current
+// acceleration") runs into the stopped car, and both get warned.
+#include <gtest/gtest.h>
+
+#include "bench/paper_scenes.h"
+#include "criticality/estimator.h"
+
+namespace criticality {
+namespace {
+
+// The ego stopped in the middle lane of a straight three-lane road (waiting in a queue), a car
+// coming up behind it at 10 m/s, 15 m between bumpers, not braking yet: stopping behind the
+// ego 2.5 m back asks for 100 / (2 * 12.5) = 4 m/s^2.
+Scene StoppedEgoCarComingUpBehind() {
+  Scene scene;
+  scene.ego.lanes = bench::StraightThreeLanes();
+  scene.ego.length_m = 4.5;
+  Vehicle follower;
+  follower.id = "follower";
+  follower.length_m = 4.5;
+  follower.state.x_m = -19.5;
+  follower.state.speed_mps = 10.0;
+  scene.vehicles.push_back(follower);
+  return scene;
+}
+
+TEST(ExpectedAccel, AFollowerExpectedToBrakeIsNotAThreat) {
+  Scene scene = StoppedEgoCarComingUpBehind();
+  Estimator estimator(Params{});
+  const Result ignorant = estimator.Estimate(scene);
+  scene.vehicles[0].state.expected_accel_mps2 = -4.0;
+  const Result expecting = estimator.Estimate(scene);
+  // Keeping 10 m/s, the follower hits the ego within 1.5 s: most of its mass collides.
+  EXPECT_GT(ignorant.p_collision, 0.5);
+  // Braking as expected it stops behind; only its less likely hypotheses still collide.
+  EXPECT_LT(expecting.p_collision, 0.2);
+  EXPECT_LT(expecting.p_collision, 0.5 * ignorant.p_collision);
+}
+
+TEST(ExpectedAccel, AnEgoExpectedToBrakeKeepsItsReferenceClear) {
+  // The ego at 10 m/s, a stopped car 15 m ahead (bumpers): keeping its speed it hits the car
+  // after 1.5 s, within the 2 s horizon; braking at 4.5 m/s^2 (after the latency and the jerk
+  // ramp) stops it about 3 m short.
+  Scene scene;
+  scene.ego.lanes = bench::StraightThreeLanes();
+  scene.ego.state.speed_mps = 10.0;
+  Vehicle stopped;
+  stopped.id = "stopped";
+  stopped.state.x_m = 0.5 * scene.ego.length_m + 15.0 + 2.25;
+  stopped.length_m = 4.5;
+  scene.vehicles.push_back(stopped);
+  Estimator estimator(Params{});
+  const Result ignorant = estimator.Estimate(scene);
+  scene.ego.state.expected_accel_mps2 = -4.5;
+  const Result expecting = estimator.Estimate(scene);
+  EXPECT_GT(ignorant.p_reference, 0.9);
+  EXPECT_LT(expecting.p_reference, 0.05);
+  EXPECT_LT(expecting.p_collision, ignorant.p_collision);
+}
+
+TEST(ExpectedAccel, OnlyALowerExpectationReplacesTheCurrentAcceleration) {
+  Scene scene = StoppedEgoCarComingUpBehind();
+  Estimator estimator(Params{});
+  const Result plain = estimator.Estimate(scene);
+  scene.vehicles[0].state.expected_accel_mps2 = 1.0;  // above the current 0: ignored
+  EXPECT_EQ(estimator.Estimate(scene).p_collision, plain.p_collision);
+}
+
+TEST(ExpectedAccel, ThePaperLiteralPresetIgnoresIt) {
+  Scene scene = StoppedEgoCarComingUpBehind();
+  Estimator estimator(ParamsPreset("paper-literal"));
+  const Result plain = estimator.Estimate(scene);
+  scene.vehicles[0].state.expected_accel_mps2 = -4.0;
+  EXPECT_EQ(estimator.Estimate(scene).p_collision, plain.p_collision);
+  Params off;
+  off.expected_accel_reference = false;
+  Estimator without(off);
+  const Result a = without.Estimate(scene);
+  scene.vehicles[0].state.expected_accel_mps2.reset();
+  EXPECT_EQ(without.Estimate(scene).p_collision, a.p_collision);
+}
+
+}  // namespace
+}  // namespace criticality
