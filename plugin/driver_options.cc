@@ -127,7 +127,7 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
 
   std::string config, act = "warn", backend = "cpu", expect;  // expect: see DriverOptions
   std::string warn_on = "p_collision";
-  bool no_lateral_controller = false, no_road_model = false;
+  bool no_lateral_controller = false, no_road_model = false, no_car_following = false;
   std::vector<std::string> events;
   bool no_progress = false, no_shortcut = false;
   po::options_description generic("General");
@@ -172,8 +172,8 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
       "scene ends in a collision of the ego, over all its hypotheses), p_reference (if the ego "
       "keeps its most probable course) or unavoidability (the least colliding ego hypothesis: 1 "
       "= nothing helps)")("warn-threshold",
-                         po::value(&o.warn_threshold)->default_value(o.warn_threshold),
-                         "value of the --warn-on estimate that starts a warning episode")(
+                          po::value(&o.warn_threshold)->default_value(o.warn_threshold),
+                          "value of the --warn-on estimate that starts a warning episode")(
       "warn-release", po::value(&o.warn_release)->default_value(-1.0, "0.8 x warn threshold"),
       "value below which a warning episode ends (hysteresis)")(
       "brake-threshold", po::value(&o.brake_threshold)->default_value(o.brake_threshold),
@@ -191,6 +191,9 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
       "no-road-model", po::bool_switch(&no_road_model),
       "ablation (paper Sec. V-A): ignore SUMO's lanes; every vehicle gets virtual lanes along "
       "its heading")(
+      "no-car-following", po::bool_switch(&no_car_following),
+      "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
+      "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(
       "threads", po::value(&o.estimator.threads)->default_value(0),
       "estimator threads (0 = all cores)")(
       "profiles", po::value(&o.params.profiles)->default_value(o.params.profiles),
@@ -204,7 +207,7 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
       "horizon", po::value(&o.params.horizon_s)->default_value(o.params.horizon_s),
       "prediction horizon (s); the path sample instants (paper: 1.0, 1.5, 2.0 s of 2 s) scale "
       "with it")("step", po::value(&o.params.step_s)->default_value(o.params.step_s),
-                                "prediction step (s)")(
+                 "prediction step (s)")(
       "range", po::value(&o.range_m)->default_value(o.range_m),
       "vehicles and pedestrians within this distance of an ego are considered (m)")(
       "no-reach-shortcut", po::bool_switch(&no_shortcut),
@@ -324,6 +327,7 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
     if (given("step")) p.step_s = o.params.step_s;
     if (no_lateral_controller) p.lateral_controller = false;
     if (no_road_model) p.road_model = false;
+    if (no_car_following) p.expected_accel_reference = false;
     o.params = p;
   }
   if (!expect.empty() && expect != "collision" && expect != "no-collision") {

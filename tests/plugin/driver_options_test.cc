@@ -106,6 +106,7 @@ TEST(DriverOptions, PresetAblationsAndWarningEstimate) {
   EXPECT_EQ(d.warn_threshold, 0.9);
   EXPECT_TRUE(d.params.lateral_controller);
   EXPECT_TRUE(d.params.road_model);
+  EXPECT_TRUE(d.params.expected_accel_reference);
   EXPECT_EQ(d.params.scoring, Params{}.scoring);
   // The preset, and explicit estimator options on top of it.
   const DriverOptions p = with({"--preset", "paper-literal", "--profiles", "5"});
@@ -115,6 +116,8 @@ TEST(DriverOptions, PresetAblationsAndWarningEstimate) {
   const DriverOptions a = with({"--no-lateral-controller", "--no-road-model"});
   EXPECT_FALSE(a.params.lateral_controller);
   EXPECT_FALSE(a.params.road_model);
+  EXPECT_TRUE(a.params.expected_accel_reference);
+  EXPECT_FALSE(with({"--no-car-following"}).params.expected_accel_reference);
   // A shorter horizon scales the path sample instants (1.0, 1.5, 2.0 of 2 s).
   const DriverOptions h = with({"--horizon", "1.5"});
   EXPECT_EQ(h.params.horizon_s, 1.5);
