@@ -32,8 +32,21 @@ Point2 PointAlong(const std::vector<Point2>& line, double s, double* heading) {
   return Point2{a.x + ux * t, a.y + uy * t};
 }
 
+double SampledReach(const LaneCorridor& c, double reach_m, double yaw) {
+  constexpr double kStep = 0.5;  // m
+  for (double d = kStep; d < reach_m; d += kStep) {
+    double heading = 0.0;
+    PointAlong(c.centre, c.position_m + d, &heading);
+    if (std::fabs(core::WrapAngle(heading - yaw)) > kMaxSampledTurnRad) {
+      return std::fmax(d - kStep, kMinSampledReachM);
+    }
+  }
+  return reach_m;
+}
+
 LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const core::Pose2& X_WV) {
   if (c.centre.size() < 2 || !(reach_m > 0.0)) return LaneSet{};
+  reach_m = SampledReach(c, reach_m, X_WV.yaw);
   const double s[3] = {c.position_m, c.position_m + 0.5 * reach_m, c.position_m + reach_m};
   // Each divider is the centre line shifted left by `offset` (negative: right).
   auto divider = [&](double offset) {

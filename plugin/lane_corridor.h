@@ -33,7 +33,22 @@ double PolylineLength(const std::vector<Point2>& line);
  *  direction of travel there (math yaw). */
 Point2 PointAlong(const std::vector<Point2>& line, double s, double* heading);
 
-/** Samples the corridor at s = position, position + reach/2, position + reach and returns the
+/** The paper's lane model is a parabola y(x) in the vehicle's frame, fitted to three samples:
+ *  it cannot follow a road that turns across the vehicle's heading. Fitted through a sample
+ *  beyond a junction's 90 degree turn, it bent the other way first and swept through the cars
+ *  waiting beside the turn (one-step false alarms of p ~ 1 in the city run). The samples stop
+ *  where the centre line has turned more than this from the vehicle's heading: the parabola
+ *  then follows the turn as far as it goes, and curves on with it beyond. */
+constexpr double kMaxSampledTurnRad = 1.0471975511965976;  // 60 degrees
+/** ... but never closer than this (a vehicle standing across its lane keeps a usable reach). */
+constexpr double kMinSampledReachM = 5.0;
+
+/** The reach the samples use: `reach_m`, or less where the centre line ahead of position turns
+ *  more than kMaxSampledTurnRad away from `yaw` (at least kMinSampledReachM). */
+double SampledReach(const LaneCorridor& corridor, double reach_m, double yaw);
+
+/** Samples the corridor at s = position, position + reach/2, position + reach (reach as
+ *  SampledReach shortens it) and returns the
  *  lanes in the vehicle's local frame X_WV. Returns an empty LaneSet (the estimator then uses a
  *  virtual lane) when the corridor has fewer than 2 points or its samples do not run forward
  *  in the vehicle's frame (e.g. the vehicle stands across its lane). */

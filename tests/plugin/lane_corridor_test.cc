@@ -60,25 +60,59 @@ TEST(LaneCorridor, ContinuesAroundABendIntoTheNextLane) {
   ASSERT_TRUE(set.own);
   // The farthest sample lies 10 m past the bend: 7 m to the vehicle's left.
   EXPECT_NEAR(set.own->left.points[2].y, 10.0 / std::sqrt(2.0) + 1.5 / std::sqrt(2.0), 1e-9);
-  // A right angle cannot be a lane y(x) in the vehicle's frame: no lanes (a virtual lane).
+  // A right angle cannot be a lane y(x) in the vehicle's frame: the samples stop before it
+  // (SampledReach), and the lane is the straight part up to the corner.
   c.centre = {{0, 0}, {20, 0}, {20, 100}};
-  EXPECT_FALSE(SampleLaneSet(c, 20.0, core::Pose2{10.0, 0.0, 0.0}).own);
+  const LaneSet corner = SampleLaneSet(c, 20.0, core::Pose2{10.0, 0.0, 0.0});
+  ASSERT_TRUE(corner.own);
+  EXPECT_LE(corner.own->left.points[2].x, 10.0);
+  EXPECT_GE(corner.own->left.points[2].x, 9.0);
+  for (const Point2& p : corner.own->left.points) EXPECT_NEAR(p.y, 1.5, 1e-9);
+}
+
+TEST(LaneCorridor, SamplesStopWhereAJunctionTurnLeavesTheVehiclesHeading) {
+  // A right turn of radius 8 m starting at the vehicle (heading +x), then straight on in -y:
+  // reach 33 m would put the farthest sample 25 m past the turn, where a parabola y(x) through
+  // it first bends left. The samples stop where the turn passes 60 degrees.
+  LaneCorridor c;
+  const double r = 8.0;
+  for (int i = 0; i <= 90; i += 5) {
+    const double a = i * core::kPi / 180.0;
+    c.centre.push_back({r * std::sin(a), -r * (1.0 - std::cos(a))});
+  }
+  c.centre.push_back({r, -r - 40.0});
+  c.position_m = 0.0;
+  c.width_m = 3.2;
+  const double arc60 = r * core::kPi / 3.0;  // 8.4 m of arc turn the heading by 60 degrees
+  const double reach = SampledReach(c, 33.0, 0.0);
+  EXPECT_LE(reach, arc60 + 0.5);
+  EXPECT_GE(reach, arc60 - 1.0);
+  const LaneSet set = SampleLaneSet(c, 33.0, core::Pose2{0.0, 0.0, 0.0});
+  ASSERT_TRUE(set.own);
+  // Every sample curves right, never left of the start (the fit through a sample past the
+  // turn did).
+  for (const Point2& p : set.own->left.points) EXPECT_LE(p.y, 1.6 + 1e-9);
+  EXPECT_LT(set.own->left.points[2].y, set.own->left.points[1].y);
+  // A straight lane keeps the whole reach.
+  LaneCorridor straight;
+  straight.centre = {{0, 0}, {100, 0}};
+  EXPECT_EQ(SampledReach(straight, 33.0, 0.0), 33.0);
 }
 
 TEST(LaneCorridor, DividersThatCrossInATightTurnAreLeftOut) {
-  // A 90 deg right turn with a 4 m radius 8 m ahead of the vehicle.
+  // A 90 deg right turn with a 1.5 m radius 8 m ahead of the vehicle.
   LaneCorridor c;
   c.centre = {{0, 0}, {8, 0}};
-  for (int k = 1; k <= 9; ++k) {
-    const double a = core::kPi / 2 * k / 9.0;
-    c.centre.push_back(Point2{8 + 4 * std::sin(a), -4 + 4 * std::cos(a)});
+  for (int k = 1; k <= 18; ++k) {
+    const double a = core::kPi / 2 * k / 18.0;
+    c.centre.push_back(Point2{8 + 1.5 * std::sin(a), -1.5 + 1.5 * std::cos(a)});
   }
-  c.centre.push_back(Point2{12, -40});
+  c.centre.push_back(Point2{9.5, -40});
   c.position_m = 0.0;
   c.width_m = 3.2;
   c.right = NeighbourLane{3.2, false};
-  // Sampled 14 m ahead (the far sample 6 m into the arc), the right neighbour's far divider,
-  // 4.8 m right of the centre line (more than the 4 m radius), folds back behind its middle
+  // Sampled up to 60 degrees into the arc (SampledReach), the right neighbour's far divider,
+  // 4.8 m right of the centre line (more than the 1.5 m radius), folds back behind its middle
   // sample: that lane is left out; the own lane (+-1.6 m) stays.
   const LaneSet set = SampleLaneSet(c, 14.0, core::Pose2{0.0, 0.0, 0.0});
   ASSERT_TRUE(set.own);
