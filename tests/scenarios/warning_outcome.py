@@ -125,7 +125,8 @@ def replay_differences(r, helptext):
     """Egos whose replayed warning episodes (the run's threshold and release: its options, else
     the driver's defaults) differ from the driver's warnings table."""
     thr, rel = open_loop.warn_settings(r, helptext)
-    return [ego for ego in r.steps if not open_loop.replay_matches(r, ego, thr, rel)]
+    column = open_loop.warn_column(r, helptext)
+    return [ego for ego in r.steps if not open_loop.replay_matches(r, ego, thr, rel, column)]
 
 
 def check(scenario, kind, values, facts, rec):

@@ -120,16 +120,15 @@ def main(argv):
             return 2
         if variant_table.REFERENCE not in names:
             chosen = [variant_table.by_name(variant_table.REFERENCE)] + chosen
-    available, skipped = [], []
-    for v in chosen:
-        missing = v.missing_options(helptext)
-        if missing:
-            line = (f"variant {v.name} skipped: the driver has no "
-                    f"{', '.join('--' + m for m in missing)} ({a.driver} --help)")
-            skipped.append({"variant": v.name, "why": line})
-            log("evaluate: " + line)
-        else:
-            available.append(v)
+    missing = {v.name: v.missing_options(helptext) for v in chosen}
+    missing = {k: m for k, m in missing.items() if m}
+    if missing:
+        for name, m in missing.items():
+            log(f"evaluate: variant {name} needs {', '.join('--' + o for o in m)}, which "
+                f"{a.driver} --help does not list: build the driver of this checkout "
+                "(tools/setup.sh) or pass --driver")
+        return 2
+    available = list(chosen)
     city_setting = None
     if not a.no_city and cities:
         city_setting = ("the whole run (900 s)" if a.full else
@@ -137,7 +136,7 @@ def main(argv):
 
     info = {"date": datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), "commit": git_describe(),
             "driver": a.driver, "command": "tools/evaluate.sh " + " ".join(argv),
-            "jobs": a.jobs, "variants": [v.name for v in available], "skipped": skipped,
+            "jobs": a.jobs, "variants": [v.name for v in available],
             "scenarios": [s.name for s in designed], "city": city_setting,
             "unavoidable_level": open_loop.UNAVOIDABLE_LEVEL, "wall_s": {}}
     try:

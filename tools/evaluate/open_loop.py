@@ -55,14 +55,22 @@ def warn_settings(run, driver_help):
     return thr, rel
 
 
+def warn_column(run, driver_help):
+    """The steps column the run's warning reads (--warn-on: p_collision, p_reference or
+    unavoidability; the driver's default when the run does not say)."""
+    return (run.option_value("warn-on") or driver_help.options.get("warn-on") or
+            "p_collision")
+
+
 def _driver_episodes(run, ego):
     return [we.Episode(w.start_s, w.end_s, w.peak_p) for w in run.ego_warnings(ego)]
 
 
-def replay_matches(run, ego, threshold, release):
-    """Whether replaying the driver's rule on the recorded p series gives the driver's episode
-    starts (a check of the replay the threshold sweep relies on)."""
-    times, p = run.series(ego, "p_collision")
+def replay_matches(run, ego, threshold, release, column="p_collision"):
+    """Whether replaying the driver's rule on the recorded series of the column the warning
+    reads gives the driver's episode starts (a check of the replay the threshold sweep relies
+    on)."""
+    times, p = run.series(ego, column)
     mine = we.episodes(times, p, threshold, release, run.step_length_s)
     theirs = _driver_episodes(run, ego)
     return [round(e.start_s, 3) for e in mine] == [round(e.start_s, 3) for e in theirs]
@@ -93,11 +101,12 @@ def judge_run(scenario, variant, run, driver_help, ssm_conflicts=None):
                  collision_free=not scenario.collides)
     row.anticipation_s, row.not_warned_reason = j.anticipation_s, j.reason
     row.false_positives, row.false_positive_starts = j.false_positives, j.false_positive_starts
-    times, p = run.series(ego, "p_collision")
+    column = warn_column(run, driver_help)
+    times, p = run.series(ego, column)
     quiet = [v for t, v in zip(times, p) if v is not None and
              (not scenario.collides or t <= scenario.quiet_until_s + 1e-9)]
     row.peak_p_quiet = max(quiet) if quiet else None
-    row.replay_matches_driver = replay_matches(run, ego, row.threshold, release)
+    row.replay_matches_driver = replay_matches(run, ego, row.threshold, release, column)
     # Unavoidable: a run of steps at or above the level that lasts until the collision.
     times, u = run.series(ego, "unavoidability")
     if not times:

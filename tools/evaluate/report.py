@@ -103,8 +103,6 @@ def _info_lines(info):
     lines = [f"- date {info['date']}, commit {info['commit']}, driver {info['driver_version']}",
              f"- command: `{info['command'].strip()}`, {info['jobs']} runs at once",
              f"- variants run: {', '.join(info['variants'])}"]
-    for s in info["skipped"]:
-        lines.append(f"- {s['why']}")
     lines.append(f"- designed scenarios: {len(info['scenarios'])}; city-like run: "
                  f"{info['city'] or 'not run'}")
     lines.append("- wall time (s): " + ", ".join(f"{k} {v:g}" for k, v in info["wall_s"].items()))
@@ -177,8 +175,6 @@ def write_all(out, designed, rows, closed, city, sweep, target_rows, info, runs,
             cols += [f"{v}_anticipation_s", f"{v}_false_positives"]
             heads += [f"{v} s", f"{v} FP"]
         md += ["## Variants (ablations, presets)", "", tables.markdown(wide, cols, heads), ""]
-    if info["skipped"]:
-        md += ["Skipped variants: " + "; ".join(s["why"] for s in info["skipped"]), ""]
     if closed:
         cols = ["scenario", "sumo_collision", "closed_collision", "avoided", "impact_open_mps",
                 "impact_closed_mps", "impact_reduction_mps", "travel_open_s", "travel_closed_s",

@@ -1,8 +1,8 @@
 """The runs of the evaluation over the designed scenarios: one row per variant, each a set of
 extra sumo-criticality options (name: value without dashes, as in a campaign file's `driver`
-section; true = a switch). To add a variant, add a row. A variant runs only when the driver's
---help lists every option it names; otherwise it is skipped with a line saying which option is
-missing (evaluate.py), never approximated.
+section; true = a switch). To add a variant, add a row. The evaluation stops before running
+anything when the driver's --help does not list an option a chosen variant names (an older
+driver; evaluate.py).
 
 `ours` (open loop, --act warn, with SUMO's SSM device on the ego) is the reference every other
 row is compared with; `closed-loop` is the same scenarios with --act brake."""

@@ -167,14 +167,16 @@ class SsmTest(unittest.TestCase):
         self.assertEqual(ped.ssm_note, "SSM ignores pedestrians")
 
 
+# Lines as sumo-criticality --help prints them (boost::program_options).
 HELP = """Usage: sumo-criticality ...
 
 General:
   -h [ --help ]                         show this help and exit
   -c [ --sumo-config ] arg              SUMO configuration
-  --warn-threshold arg (=0.5)           p_cra that starts a warning episode
+  --warn-threshold arg (=0.90000000000000002)
+                                        value of the --warn-on estimate that
   --warn-release arg (=0.8 x warn threshold)
-                                        p_cra below which
+                                        value below which
   --record-scenes arg                   write every scene as a scene file that 'criticality-bench
                                         --scene-file' replays without SUMO
   --no-lateral-controller               the ablation
@@ -187,7 +189,7 @@ class DriverHelpTest(unittest.TestCase):
         self.assertTrue(h.has("sumo-config") and h.has("no-lateral-controller"))
         self.assertFalse(h.has("scene-file"))  # a wrapped description line, not an option
         self.assertFalse(h.has("preset"))
-        self.assertEqual(h.default_float("warn-threshold", None), 0.5)
+        self.assertAlmostEqual(h.default_float("warn-threshold", None), 0.9)
         self.assertEqual(h.default_float("warn-release", -1.0), -1.0)
 
     def test_variants_name_their_missing_options(self):
@@ -211,11 +213,15 @@ class CampaignFileTest(unittest.TestCase):
         self.assertTrue(campaign_runs.SSM_OPTIONS["device.ssm.file"].startswith("/proc/self/cwd/"))
 
 
+# A driver whose default threshold is 0.5 (make_run's episodes are at 0.5 / 0.4).
+HELP_05 = HELP.replace("(=0.90000000000000002)", "(=0.5)")
+
+
 class OpenLoopTest(unittest.TestCase):
     def test_row_of_a_warned_collision(self):
         p = [0.0] * 10 + [0.2, 0.6, 0.7, 0.9, 1.0, 1.0]
         run = make_run("s", "ego", p, collision_s=1.5)
-        h = driver_help.DriverHelp(HELP)
+        h = driver_help.DriverHelp(HELP_05)
         row = open_loop.judge_run(scenario("s"), "ours", run, h)
         self.assertTrue(row.collision and row.outcome_as_expected)
         self.assertAlmostEqual(row.anticipation_s, 0.4)  # 1.5 - 1.1
@@ -227,7 +233,7 @@ class OpenLoopTest(unittest.TestCase):
         p = [0.0, 0.6, 0.6, 0.0]
         run = make_run("s", "ego", p, warnings=[run_data.Warning("ego", 0.2, 0.3, 0.6)])
         row = open_loop.judge_run(scenario("s", "no-collision", "free"), "ours", run,
-                                  driver_help.DriverHelp(HELP))
+                                  driver_help.DriverHelp(HELP_05))
         self.assertFalse(row.replay_matches_driver)
         self.assertEqual(row.false_positives, 1)
 
@@ -235,12 +241,12 @@ class OpenLoopTest(unittest.TestCase):
         p = [0.0] * 10 + [0.6] * 6
         run = make_run("s", "ego", p, collision_s=1.5)
         run.steps["ego"]["unavoidability"] = [0.0] * 13 + [0.96, 0.99, 1.0]
-        row = open_loop.judge_run(scenario("s"), "ours", run, driver_help.DriverHelp(HELP))
+        row = open_loop.judge_run(scenario("s"), "ours", run, driver_help.DriverHelp(HELP_05))
         self.assertAlmostEqual(row.unavoidable_s, 0.2)
 
     def test_a_run_option_overrides_the_default_threshold(self):
         run = make_run("s", "ego", [0.0], options="sumo-criticality --warn-threshold 0.9")
-        self.assertEqual(open_loop.warn_settings(run, driver_help.DriverHelp(HELP)),
+        self.assertEqual(open_loop.warn_settings(run, driver_help.DriverHelp(HELP_05)),
                          (0.9, 0.9 * 0.8))
 
 
