@@ -17,6 +17,10 @@ def _ms(v):
     return "missed" if v is None else f"{v * 1000:.0f}"
 
 
+def _ms_unit(v):
+    return "missed" if v is None else f"{v * 1000:.0f} ms"
+
+
 def timeline(ax, scenario, rows_by_variant, runs, ssm_conflicts, ref, compact=False):
     """One scenario: p of ours and of every open-loop variant, unavoidability when recorded,
     our warnings, SSM's critical intervals as a band."""
@@ -27,7 +31,8 @@ def timeline(ax, scenario, rows_by_variant, runs, ssm_conflicts, ref, compact=Fa
         if run is None or not run.ok:
             continue
         times, p = run.series(scenario.ego, "p_collision")
-        style = {} if name == ref else {"linestyle": "-", "alpha": 0.8}
+        style = ({"linewidth": 2.2, "zorder": 5} if name == ref else
+                 {"linestyle": "-", "alpha": 0.7, "linewidth": 1.0})
         series[f"p {name}"] = (times, p, style)
         if name == ref:
             times, u = run.series(scenario.ego, "unavoidability")
@@ -42,8 +47,8 @@ def timeline(ax, scenario, rows_by_variant, runs, ssm_conflicts, ref, compact=Fa
     eps = [(e.start_s, e.end_s) for e in ours.warnings] if ours is not None else []
     title = scenario.name
     if not compact and ours is not None and ours.collision:
-        title += (f" (collision with {ours.partner}; ours {_ms(ours.anticipation_s)} ms, "
-                  f"SSM {_ms(ours.ssm_anticipation_s)} ms)")
+        title += (f" (collision with {ours.partner}; ours {_ms_unit(ours.anticipation_s)}, "
+                  f"SSM {_ms_unit(ours.ssm_anticipation_s)})")
     cp.criticality_timeline(ax, series, threshold=ours.threshold if ours else None,
                             collision_s=ours.collision_s if ours else None,
                             quiet_until_s=scenario.quiet_until_s, episodes=eps, bands=bands,
@@ -93,7 +98,8 @@ def anticipation_bars(out, designed, rows, ref):
         series[v] = [by[n].anticipation_s if by[n].status == "ok" else None for n in names]
     by = {r.scenario: r for r in rows.get(ref, [])}
     series[SSM_LABEL] = [by[n].ssm_anticipation_s if n in by else None for n in names]
-    fig, ax = cp.new_figure(max(8.0, 0.75 * len(names) * max(1, len(series)) / 2 + 3), 4.8)
+    fig, ax = cp.new_figure(min(20.0, max(8.0, 0.75 * len(names) * max(1, len(series)) / 2 + 3)),
+                            4.8)
     cp.grouped_bars(ax, names, series, "anticipation (s)",
                     "Anticipation per collision scenario (collision time minus warning start; "
                     "labels in ms)", labels=True, label_format=_ms)
@@ -111,7 +117,8 @@ def false_positive_bars(out, designed, rows, ref):
         series[v] = [by[n].false_positives if by[n].status == "ok" else None for n in names]
     by = {r.scenario: r for r in rows.get(ref, [])}
     series[SSM_LABEL] = [by[n].ssm_false_positives if n in by else None for n in names]
-    fig, ax = cp.new_figure(max(9.0, 0.45 * len(names) * max(1, len(series)) / 2 + 3), 4.5)
+    fig, ax = cp.new_figure(min(20.0, max(9.0, 0.45 * len(names) * max(1, len(series)) / 2 + 3)),
+                            4.5)
     cp.grouped_bars(ax, names, series, "false-positive episodes",
                     "False positives per scenario (warnings in the quiet phase or in a "
                     "collision-free scenario)", labels=True,
@@ -152,6 +159,11 @@ def summary(out, summary_rows, city_row, closed_rows):
                     "mean anticipation (ms)", "Mean anticipation (warned)", labels=True,
                     label_format=lambda v: "-" if v is None else f"{v:.0f}")
     axes[0].axhline(932, color="red", linestyle=":", linewidth=1)
+    # Room above the bars for their labels, the legend under the axes (not over the bars).
+    top = max([v for r in summary_rows for v in (r["static_mean_ms"], r["moving_mean_ms"])
+               if isinstance(v, (int, float))] or [1000])
+    axes[0].set_ylim(0, top * 1.25)
+    axes[0].legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.25), ncol=2)
     cp.grouped_bars(axes[1], detectors, {"false positives": [r["false_positives"]
                                                              for r in summary_rows]},
                     "episodes", "False positives (designed suite)", labels=True)
