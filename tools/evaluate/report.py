@@ -99,6 +99,30 @@ def summary_rows(rows, ref, city):
     return out
 
 
+def closed_loop_line(closed):
+    """One line: the closed loop's collisions avoided, impact speeds and the cost of braking in
+    the collision-free scenarios."""
+    ok = [c for c in closed if c.status == "ok"]
+    if not ok:
+        return "Closed loop (--act brake): not run."
+    hit = [c for c in ok if c.open.collided]
+    avoided = [c for c in hit if c.avoided]
+    reduced = [c.impact_speed_reduction_mps for c in hit if not c.avoided]
+    caused = [c for c in ok if c.closed.collided and not c.open.collided]
+    free_braking = [c for c in ok if not c.open.collided and c.closed.brakings > 0]
+    line = (f"Closed loop (--act brake): {len(avoided)} of {len(hit)} open-loop collisions "
+            f"avoided ({', '.join(c.scenario for c in hit if not c.avoided) or 'all'} not)")
+    if reduced:
+        line += (f"; impact speed of the others reduced by {_mean(reduced):.1f} m/s on average "
+                 f"({', '.join(f'{v:.1f}' for v in reduced)})")
+    line += (f"; {len(caused)} collisions caused; braking in {len(free_braking)} of "
+             f"{len(ok) - len(hit)} collision-free scenarios")
+    costs = [c.travel_time_cost_s for c in avoided if c.travel_time_cost_s is not None]
+    if costs:
+        line += f"; travel-time cost where avoided {_mean(costs):.1f} s on average"
+    return line + "."
+
+
 def _info_lines(info):
     lines = [f"- date {info['date']}, commit {info['commit']}, driver {info['driver_version']}",
              f"- command: `{info['command'].strip()}`, {info['jobs']} runs at once",
@@ -157,6 +181,7 @@ def write_all(out, designed, rows, closed, city, sweep, target_rows, info, runs,
               "detector", "collisions warned", "static mean ms", "moving mean ms",
               "moving range ms", "pedestrian mean ms", "min ms", "false positives (suite)",
               "city false alarms / vehicle-hour"], 1), "",
+          closed_loop_line(closed), "",
           "## Targets (at the default threshold)", "",
           tables.markdown(target_d, ["target", "value", "met", "gap"]), ""]
     open_cols = ["scenario", "category", "expected", "sumo_collision", "partner", "collision_s",
