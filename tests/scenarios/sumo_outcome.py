@@ -65,12 +65,6 @@ def ReadRecorded(path):
     return recorded
 
 
-def StepLength(sumocfg):
-    for e in ET.parse(sumocfg).getroot().iter("step-length"):
-        return float(e.get("value"))
-    return 1.0  # SUMO's default
-
-
 def Dimensions(sumocfg):
     """Type id -> (length, width) and object id -> type id, from the run's route files."""
     root = ET.parse(sumocfg).getroot()
@@ -137,16 +131,15 @@ def BoxDistance(p, q):
     return best
 
 
-def ClosestApproach(fcd, ego, types, owner, step_length):
+def ClosestApproach(fcd, ego, types, owner):
     """Other object id -> (closest distance m, time s), over the steps where both exist.
-    SUMO's output files (FCD, collision output, SSM) label the state a step computes with the
-    time the step began; the driver's database stamps it with the time after the step (SUMO's
-    getTime then). Times here are in the driver's convention: FCD time + one step."""
+    Times are FCD's, the same convention as the driver's database and SUMO's collision and SSM
+    output (plugin/README.md, "Time stamps")."""
     closest = {}
     for _, step in ET.iterparse(fcd):
         if step.tag != "timestep":
             continue
-        t = float(step.get("time")) + step_length
+        t = float(step.get("time"))
         boxes = {}
         for e in step:
             person = e.tag == "person"
@@ -229,7 +222,7 @@ def Run(driver, scenario, work, ssm):
             "partner_speed_mps": c["victim_speed_mps"] if ego_is_collider else c["collider_speed_mps"]}
     sumocfg = os.path.join(scenario, cfg["sumo-config"])
     types, owner = Dimensions(sumocfg)
-    closest = ClosestApproach(fcd, ego, types, owner, StepLength(sumocfg))
+    closest = ClosestApproach(fcd, ego, types, owner)
     report["closest"] = {oid: {"distance_m": round(d, 2), "time_s": round(t, 2)}
                          for oid, (d, t) in sorted(closest.items(), key=lambda kv: kv[1][0])}
     if ssm:

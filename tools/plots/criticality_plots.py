@@ -1,9 +1,11 @@
 """Plot and HTML helpers for sumo-criticality reports.
 
-Generic pieces shared by the campaign report (tools/campaign/campaign_report.py) and any later
-evaluation: reading the CSV tables the C++ tools write, line and bar charts over categorical
-parameter values, a reliability diagram, a map of a SUMO network with values per edge and
-junction and event points, and a self-contained HTML page around the figures and tables.
+Generic pieces shared by the campaign report (tools/campaign/campaign_report.py) and the
+evaluation (tools/evaluate/): reading the CSV tables the C++ tools write, line and bar charts over
+categorical parameter values, a reliability diagram, an ego's criticality over time with its
+warnings and collision, trade-off curves (anticipation against false alarms), a map of a SUMO
+network with values per edge and junction and event points, and a self-contained HTML page
+around the figures and tables.
 Needs Python 3 and matplotlib (Debian: python3-matplotlib); no sumolib: the .net.xml is read
 with the standard library.
 """
@@ -82,14 +84,16 @@ def line_by_category(ax, categories, series, ylabel, title=None, xlabel=None):
         ax.legend(fontsize=7)
 
 
-def grouped_bars(ax, categories, series, ylabel, title=None, stacked=False, labels=False):
-    """Bars per category, one colour per series ({label: [value per category]}); with labels,
-    each bar carries its value."""
+def grouped_bars(ax, categories, series, ylabel, title=None, stacked=False, labels=False,
+                 label_format=None):
+    """Bars per category, one colour per series ({label: [value per category]}; None draws no
+    bar); with labels, each bar carries its value, written by label_format(value) when given
+    (it also gets the None values, e.g. to write "missed")."""
     n = max(1, len(series))
     width = 0.8 if stacked else 0.8 / n
     bottom = [0.0] * len(categories)
-    for k, (label, values) in enumerate(series.items()):
-        values = [0.0 if v is None else v for v in values]
+    for k, (label, raw) in enumerate(series.items()):
+        values = [0.0 if v is None else v for v in raw]
         if stacked:
             xs = list(range(len(categories)))
             ax.bar(xs, values, width, bottom=bottom, label=label)
@@ -98,7 +102,10 @@ def grouped_bars(ax, categories, series, ylabel, title=None, stacked=False, labe
             xs = [i - 0.4 + width * (k + 0.5) for i in range(len(categories))]
             bars = ax.bar(xs, values, width, label=label)
             if labels:
-                ax.bar_label(bars, labels=[f"{v:g}" for v in values], fontsize=7, padding=1)
+                texts = ([label_format(v) for v in raw] if label_format
+                         else [f"{v:g}" for v in values])
+                ax.bar_label(bars, labels=texts, fontsize=7, padding=1,
+                             rotation=90 if label_format else 0)
     ax.set_xticks(list(range(len(categories))))
     ax.set_xticklabels([str(c) for c in categories], rotation=20, ha="right", fontsize=8)
     ax.set_ylabel(ylabel)
@@ -136,6 +143,79 @@ def reliability_diagram(ax, bins, title="Reliability"):
     counts.set_ylabel("estimates per bin", fontsize=8)
     ax.set_zorder(counts.get_zorder() + 1)  # the curve above the count bars
     ax.patch.set_visible(False)
+
+
+def criticality_timeline(ax, series, threshold=None, collision_s=None, quiet_until_s=None,
+                         episodes=(), bands=(), title=None, ylabel="collision probability p"):
+    """An ego's criticality over time (the paper's Fig. "results"): one line per series, the
+    warning threshold, the end of the quiet phase, the collision, shaded warning episodes and
+    thin bands under the curves (e.g. another detector's critical intervals).
+
+    series: {label: (times, values)} or {label: (times, values, style dict)};
+    episodes: [(start, end)] (end None: until the last time shown);
+    bands: [(label, [(start, end)], colour)], drawn one above the other below p = 0."""
+    t_max = 0.0
+    for k, (label, data) in enumerate(series.items()):
+        times, values = data[0], data[1]
+        style = dict(data[2]) if len(data) > 2 else {}
+        style.setdefault("linewidth", 1.4 if k == 0 else 1.1)
+        if times:
+            ax.plot(times, [float("nan") if v is None else v for v in values], label=label,
+                    **style)
+            t_max = max(t_max, times[-1])
+    for start, end in episodes:
+        ax.axvspan(start, t_max if end is None else end, color="red", alpha=0.12, linewidth=0)
+    if episodes:
+        ax.plot([], [], color="red", alpha=0.3, linewidth=6, label="warning")
+    if threshold is not None:
+        ax.axhline(threshold, color="grey", linestyle=":", linewidth=1,
+                   label=f"threshold {threshold:g}")
+    if quiet_until_s is not None and quiet_until_s > 0:
+        ax.axvline(quiet_until_s, color="grey", linestyle="--", linewidth=1, label="quiet phase end")
+    if collision_s is not None:
+        ax.axvline(collision_s, color="black", linewidth=1.5, label="collision (SUMO)")
+    for k, (label, intervals, colour) in enumerate(bands):
+        y0 = -0.06 - 0.05 * k
+        for start, end in intervals:
+            ax.plot([start, t_max if end is None else end], [y0, y0], color=colour, linewidth=4,
+                    solid_capstyle="butt")
+        ax.plot([], [], color=colour, linewidth=4, label=label)
+    ax.set_ylim(-0.08 - 0.05 * len(bands), 1.05)
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel(ylabel)
+    if title:
+        ax.set_title(title, fontsize=10)
+    ax.grid(True, alpha=0.3)
+
+
+def tradeoff_curve(ax, curves, xlabel, ylabel, title=None, log_x=False, highlight=None):
+    """Curves of (x, y) points, each point labelled with its setting (e.g. anticipation against
+    false alarms, one point per threshold).
+
+    curves: {label: [(x, y, point label)]}; highlight: {label: point label} marked larger."""
+    highlight = highlight or {}
+    drawn = 0
+    for label, pts in curves.items():
+        pts = [(x, y, t) for x, y, t in pts if x is not None and y is not None]
+        if not pts:
+            continue
+        drawn += 1
+        xs = [max(x, 1e-3) if log_x else x for x, _, _ in pts]
+        line = ax.plot(xs, [y for _, y, _ in pts], marker="o", markersize=3, label=label)[0]
+        for x, (_, y, text) in zip(xs, pts):
+            ax.annotate(str(text), (x, y), fontsize=6, xytext=(3, 3), textcoords="offset points")
+            if highlight.get(label) == text:
+                ax.plot([x], [y], marker="o", markersize=9, markerfacecolor="none",
+                        color=line.get_color())
+    if log_x:
+        ax.set_xscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    if title:
+        ax.set_title(title, fontsize=10)
+    ax.grid(True, alpha=0.3)
+    if drawn > 1:
+        ax.legend(fontsize=7)
 
 
 # --- SUMO networks ------------------------------------------------------------------------

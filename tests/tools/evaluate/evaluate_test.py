@@ -1,0 +1,326 @@
+#!/usr/bin/env python3
+"""Unit tests of the evaluation's analysis (tools/evaluate/): warning episodes and their
+judgement, SSM files, the driver's --help, campaign files, the threshold sweep, the closed loop,
+the city's false alarms and the targets, on hand-made inputs with hand-computed answers. No SUMO,
+no matplotlib."""
+
+import os
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "tools", "evaluate"))
+
+import campaign_runs  # noqa: E402
+import city_false_alarms  # noqa: E402
+import closed_loop  # noqa: E402
+import driver_help  # noqa: E402
+import open_loop  # noqa: E402
+import run_data  # noqa: E402
+import scenario_meta  # noqa: E402
+import ssm_log  # noqa: E402
+import targets  # noqa: E402
+import threshold_sweep  # noqa: E402
+import warning_episodes as we  # noqa: E402
+
+STEP = 0.1
+
+
+def times(n, start=0.0):
+    return [round(start + STEP * k, 6) for k in range(n)]
+
+
+def make_run(name, ego, p, collision_s=None, partner="obstacle", speeds=None, events=(),
+             end_s=None, warnings=None, status="ok", options=""):
+    t = times(len(p))
+    r = run_data.Run(0, name, "/nonexistent", status, "", {"sim_time_s": end_s or t[-1]})
+    r.options = options
+    r.steps[ego] = {"time_s": t, "p_collision": list(p)}
+    if speeds is not None:
+        r.steps[ego]["speed_mps"] = list(speeds)
+    if collision_s is not None:
+        r.collisions.append(run_data.Collision(collision_s, ego, partner, 20.0, 0.0, True))
+    r.ego_events = list(events)
+    if warnings is None:  # the driver's episodes at 0.5 / 0.4
+        warnings = [run_data.Warning(ego, e.start_s, e.end_s, e.peak)
+                    for e in we.episodes(t, p, 0.5, 0.4, STEP)]
+    r.warnings = warnings
+    return r
+
+
+def scenario(name, expect="collision", category="static-object", quiet=1.0, partner="obstacle"):
+    return scenario_meta.Scenario(name, "/x", "/x/scenario.cfg", ego="ego", expect=expect,
+                                  partner=partner if expect == "collision" else "",
+                                  quiet_until_s=quiet, category=category)
+
+
+class EpisodesTest(unittest.TestCase):
+    def test_hysteresis_opens_at_threshold_and_closes_below_release(self):
+        t = times(8)
+        p = [0.1, 0.5, 0.45, 0.41, 0.39, 0.6, 0.7, 0.2]
+        eps = we.episodes(t, p, 0.5, 0.4, STEP)
+        self.assertEqual([(e.start_s, e.end_s) for e in eps], [(0.1, 0.4), (0.5, 0.7)])
+        self.assertAlmostEqual(eps[1].peak, 0.7)
+
+    def test_open_at_the_end_and_closed_by_a_gap(self):
+        eps = we.episodes([0.0, 0.1, 0.5, 0.6], [0.9, 0.9, 0.9, 0.9], 0.5, 0.4, STEP)
+        self.assertEqual([(e.start_s, e.end_s) for e in eps], [(0.0, 0.2), (0.5, None)])
+
+    def test_judge_warned_after_the_quiet_phase(self):
+        eps = [we.Episode(0.5, 0.6, 0.6), we.Episode(2.0, None, 1.0)]
+        j = we.judge(eps, 3.0, 1.0, STEP, collision_free=False)
+        self.assertAlmostEqual(j.anticipation_s, 1.0)
+        self.assertEqual(j.false_positives, 1)  # the one starting at 0.5, in the quiet phase
+        self.assertEqual(j.false_positive_starts, (0.5,))
+
+    def test_judge_a_warning_on_since_the_quiet_phase_is_no_anticipation(self):
+        j = we.judge([we.Episode(0.8, None, 1.0)], 3.0, 1.0, STEP, collision_free=False)
+        self.assertIsNone(j.anticipation_s)
+        self.assertIn("quiet phase", j.reason)
+        self.assertEqual(j.false_positives, 1)
+
+    def test_judge_an_episode_closed_two_steps_before_the_collision_misses_it(self):
+        j = we.judge([we.Episode(2.0, 2.8, 0.6)], 3.0, 1.0, STEP, collision_free=False)
+        self.assertIsNone(j.anticipation_s)
+        self.assertIn("ended at 2.8 s", j.reason)
+        # closed one step before: still the collision's warning (the driver's rule)
+        j = we.judge([we.Episode(2.0, 2.9, 0.6)], 3.0, 1.0, STEP, collision_free=False)
+        self.assertAlmostEqual(j.anticipation_s, 1.0)
+
+    def test_judge_collision_free_counts_every_episode(self):
+        j = we.judge([we.Episode(5.0, 5.5, 0.6), we.Episode(9.0, 9.1, 0.5)], None, 0.0, STEP,
+                     collision_free=True)
+        self.assertEqual(j.false_positives, 2)
+        self.assertIsNone(j.anticipation_s)
+
+
+SSM_XML = """<?xml version="1.0"?>
+<SSMLog>
+  <conflict begin="1.0" end="1.5" ego="ego" foe="a">
+    <timeSpan values="1.00 1.10 1.20 1.30 1.40 1.50"/>
+    <TTCSpan values="NA 3.50 2.90 2.80 NA 2.00"/>
+    <DRACSpan values="NA NA NA NA 3.50 NA"/>
+    <minTTC time="1.50" position="0,0" type="2" value="2.00"/>
+    <PET time="NA" position="NA" type="NA" value="NA"/>
+  </conflict>
+  <conflict begin="1.6" end="1.8" ego="ego" foe="b">
+    <timeSpan values="1.60 1.70 1.80"/>
+    <TTCSpan values="2.00 NA NA"/>
+    <DRACSpan values="NA NA NA"/>
+    <PET time="4.00" position="0,0" type="2" value="1.50"/>
+  </conflict>
+  <conflict begin="2.0" end="2.1" ego="other" foe="ego">
+    <timeSpan values="2.00 2.10"/>
+    <TTCSpan values="1.00 1.00"/>
+    <DRACSpan values="NA NA"/>
+  </conflict>
+</SSMLog>
+"""
+
+
+class SsmTest(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.path = os.path.join(self.dir.name, "ssm.xml")
+        with open(self.path, "w") as f:
+            f.write(SSM_XML)
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def test_missing_file_is_none(self):
+        self.assertIsNone(ssm_log.read_ssm(os.path.join(self.dir.name, "none.xml")))
+
+    def test_conflicts_and_critical_times(self):
+        c = ssm_log.read_ssm(self.path)
+        self.assertEqual([(x.ego, x.foe) for x in c], [("ego", "a"), ("ego", "b"), ("other", "ego")])
+        self.assertEqual(c[0].ttc, [None, 3.5, 2.9, 2.8, None, 2.0])
+        self.assertEqual(c[1].pet_s, 1.5)
+        self.assertEqual(ssm_log.critical_times(c[0], 3.0, None), [1.2, 1.3, 1.5])
+        self.assertEqual(ssm_log.critical_times(c[0], 3.0, 3.0), [1.2, 1.3, 1.4, 1.5])
+
+    def test_episodes_merge_over_foes_and_count_pet(self):
+        c = ssm_log.read_ssm(self.path)
+        eps = ssm_log.ego_episodes(c, "ego", STEP)  # TTC<3 or DRAC>3, PET<2
+        self.assertEqual([(e.start_s, round(e.end_s, 6)) for e in eps],
+                         [(1.2, 1.7), (4.0, 4.1)])  # 1.2-1.6 from a, 1.6 from b; PET at 4.0
+        eps = ssm_log.ego_episodes(c, "ego", STEP, pet_max=None, foe="a")
+        self.assertEqual([(e.start_s, round(e.end_s, 6)) for e in eps], [(1.2, 1.6)])
+        eps = ssm_log.ego_episodes(c, "ego", STEP, drac_min=None, pet_max=None, foe="a")
+        self.assertEqual([(e.start_s, round(e.end_s, 6)) for e in eps],
+                         [(1.2, 1.4), (1.5, 1.6)])  # one uncritical sample (1.4) splits
+        eps = ssm_log.ego_episodes(c, "ego", STEP, ttc_max=2.5, drac_min=None, pet_max=None)
+        self.assertEqual([e.start_s for e in eps], [1.5])  # 2.0 at 1.5 and 1.6: one episode
+        self.assertEqual(set(ssm_log.all_ego_episodes(c, STEP)), {"ego", "other"})
+
+    def test_ssm_side_of_a_row(self):
+        c = ssm_log.read_ssm(self.path)
+        row = open_loop.OpenLoopRow("s", "moving-object", "ours", collision_s=1.6, partner="a")
+        open_loop.judge_ssm(row, scenario("s", quiet=1.0, partner="a"), c, STEP)
+        self.assertAlmostEqual(row.ssm_anticipation_s, 0.4)  # 1.6 - 1.2 (TTC 2.9 at 1.2)
+        self.assertEqual(row.ssm_min_ttc_s, 2.0)
+        self.assertEqual(row.ssm_false_positives, 0)
+        ped = open_loop.OpenLoopRow("p", "pedestrian", "ours", collision_s=9.0, partner="walker")
+        open_loop.judge_ssm(ped, scenario("p", category="pedestrian", partner="walker"), c, STEP)
+        self.assertIsNone(ped.ssm_anticipation_s)
+        self.assertEqual(ped.ssm_note, "SSM ignores pedestrians")
+
+
+# Lines as sumo-criticality --help prints them (boost::program_options).
+HELP = """Usage: sumo-criticality ...
+
+General:
+  -h [ --help ]                         show this help and exit
+  -c [ --sumo-config ] arg              SUMO configuration
+  --warn-threshold arg (=0.90000000000000002)
+                                        value of the --warn-on estimate that
+  --warn-release arg (=0.8 x warn threshold)
+                                        value below which
+  --record-scenes arg                   write every scene as a scene file that 'criticality-bench
+                                        --scene-file' replays without SUMO
+  --no-lateral-controller               the ablation
+"""
+
+
+class DriverHelpTest(unittest.TestCase):
+    def test_options_and_defaults(self):
+        h = driver_help.DriverHelp(HELP)
+        self.assertTrue(h.has("sumo-config") and h.has("no-lateral-controller"))
+        self.assertFalse(h.has("scene-file"))  # a wrapped description line, not an option
+        self.assertFalse(h.has("preset"))
+        self.assertAlmostEqual(h.default_float("warn-threshold", None), 0.9)
+        self.assertEqual(h.default_float("warn-release", -1.0), -1.0)
+
+    def test_variants_name_their_missing_options(self):
+        import variants
+        h = driver_help.DriverHelp(HELP + "  --act arg (=warn)   act\n")
+        self.assertEqual(variants.by_name("no-lateral-controller").missing_options(h), [])
+        self.assertEqual(variants.by_name("paper-literal").missing_options(h), ["preset"])
+        self.assertEqual(variants.by_name("no-road-model").missing_options(h), ["no-road-model"])
+
+
+class CampaignFileTest(unittest.TestCase):
+    def test_yaml(self):
+        text = campaign_runs.campaign_yaml("ours", "/o/ours", ["/s/a/scenario.cfg"],
+                                           {"act": "warn", "no-road-model": "true"},
+                                           {"device.ssm.measures": "TTC DRAC PET"}, 600)
+        self.assertIn('output: "/o/ours"\n', text)
+        self.assertIn('  - "/s/a/scenario.cfg"\n', text)
+        self.assertIn('driver:\n  act: "warn"\n  no-road-model: true\n', text)
+        self.assertIn('sumo:\n  device.ssm.measures: "TTC DRAC PET"\n', text)
+        self.assertIn("limits:\n  time_s: 600\n", text)
+        self.assertTrue(campaign_runs.SSM_OPTIONS["device.ssm.file"].startswith("/proc/self/cwd/"))
+
+
+# A driver whose default threshold is 0.5 (make_run's episodes are at 0.5 / 0.4).
+HELP_05 = HELP.replace("(=0.90000000000000002)", "(=0.5)")
+
+
+class OpenLoopTest(unittest.TestCase):
+    def test_row_of_a_warned_collision(self):
+        p = [0.0] * 10 + [0.2, 0.6, 0.7, 0.9, 1.0, 1.0]
+        run = make_run("s", "ego", p, collision_s=1.5)
+        h = driver_help.DriverHelp(HELP_05)
+        row = open_loop.judge_run(scenario("s"), "ours", run, h)
+        self.assertTrue(row.collision and row.outcome_as_expected)
+        self.assertAlmostEqual(row.anticipation_s, 0.4)  # 1.5 - 1.1
+        self.assertEqual(row.threshold, 0.5)
+        self.assertTrue(row.replay_matches_driver)
+        self.assertEqual(row.unavoidable_note, "not recorded by this driver")
+
+    def test_replay_mismatch_is_reported(self):
+        p = [0.0, 0.6, 0.6, 0.0]
+        run = make_run("s", "ego", p, warnings=[run_data.Warning("ego", 0.2, 0.3, 0.6)])
+        row = open_loop.judge_run(scenario("s", "no-collision", "free"), "ours", run,
+                                  driver_help.DriverHelp(HELP_05))
+        self.assertFalse(row.replay_matches_driver)
+        self.assertEqual(row.false_positives, 1)
+
+    def test_unavoidability_when_recorded(self):
+        p = [0.0] * 10 + [0.6] * 6
+        run = make_run("s", "ego", p, collision_s=1.5)
+        run.steps["ego"]["unavoidability"] = [0.0] * 13 + [0.96, 0.99, 1.0]
+        row = open_loop.judge_run(scenario("s"), "ours", run, driver_help.DriverHelp(HELP_05))
+        self.assertAlmostEqual(row.unavoidable_s, 0.2)
+
+    def test_a_run_option_overrides_the_default_threshold(self):
+        run = make_run("s", "ego", [0.0], options="sumo-criticality --warn-threshold 0.9")
+        self.assertEqual(open_loop.warn_settings(run, driver_help.DriverHelp(HELP_05)),
+                         (0.9, 0.9 * 0.8))
+
+
+class SweepTest(unittest.TestCase):
+    def test_thresholds_trade_anticipation_for_false_positives(self):
+        crit = make_run("c", "ego", [0.0] * 5 + [0.3, 0.3, 0.6, 0.6, 0.95, 1.0], collision_s=1.0)
+        free = make_run("f", "ego", [0.0, 0.35, 0.35, 0.0])
+        scen = [scenario("c", quiet=0.2), scenario("f", "no-collision", "free")]
+        rows = threshold_sweep.sweep_ours(scen, {"c": crit, "f": free}, None,
+                                          thresholds=[0.25, 0.5, 0.9])
+        self.assertEqual([r.suite_false_positives for r in rows], [1, 0, 0])
+        self.assertEqual([r.warned for r in rows], [1, 1, 1])
+        for r, want in zip(rows, [0.5, 0.3, 0.1]):
+            self.assertAlmostEqual(r.mean_anticipation_s, want)
+            self.assertAlmostEqual(r.mean_all_s, want)
+
+
+class ClosedLoopTest(unittest.TestCase):
+    def test_avoided_and_travel_time(self):
+        s = scenario("s")
+        events = [(0.0, "ego", "depart")]
+        opened = make_run("s", "ego", [0.0] * 10, collision_s=0.5, speeds=[20.0] * 10,
+                          events=events)
+        closed = make_run("s", "ego", [0.0] * 10, speeds=[20.0] * 5 + [10.0] * 5,
+                          events=events)
+        row = closed_loop.compare(s, opened, closed)
+        self.assertTrue(row.avoided)
+        self.assertAlmostEqual(row.impact_speed_reduction_mps, 20.0)
+        # open: 20 m in 0.9 s; closed: 15 m: 5 m behind at 20/0.9 m/s
+        self.assertAlmostEqual(row.travel_time_cost_s, 5.0 / (20.0 / 0.9))
+
+    def test_both_arrive(self):
+        s = scenario("s", "no-collision", "free")
+        o = make_run("s", "ego", [0.0] * 3, events=[(0.0, "ego", "depart"), (10.0, "ego", "arrive")])
+        c = make_run("s", "ego", [0.0] * 3, events=[(0.0, "ego", "depart"), (12.5, "ego", "arrive")])
+        row = closed_loop.compare(s, o, c)
+        self.assertFalse(row.avoided)
+        self.assertAlmostEqual(row.travel_time_cost_s, 2.5)
+
+
+class CityTest(unittest.TestCase):
+    def test_false_alarms_per_vehicle_hour(self):
+        run = make_run("city", "a", [0.0] * 36000)  # one hour of one vehicle
+        run.steps["b"] = {"time_s": times(18000), "p_collision": [0.0] * 18000}
+        run.warnings = [run_data.Warning("a", 10.0, 11.0, 0.6), run_data.Warning("b", 5.0, 6.0, 0.6),
+                        run_data.Warning("b", 100.0, 101.0, 0.6)]
+        run.collisions = [run_data.Collision(102.5, "b", "x", 5.0, 0.0, True)]  # within 2 s
+        row = city_false_alarms.judge_city(run, "test", None)
+        self.assertAlmostEqual(row.vehicle_hours, 1.5)
+        self.assertEqual(row.false_alarms, 2)
+        self.assertAlmostEqual(row.per_vehicle_hour, 2 / 1.5)
+
+
+class TargetsTest(unittest.TestCase):
+    def test_misses_say_by_how_much(self):
+        def row(name, cat, ant, fp=0):
+            r = open_loop.OpenLoopRow(name, cat, "ours", status="ok", anticipation_s=ant,
+                                      false_positives=fp, peak_p_quiet=0.6)
+            r.not_warned_reason = "" if ant is not None else "no warning before the collision"
+            return r
+        rows = [row("s1", "static-object", 0.8), row("s2", "static-object", 1.0),
+                row("m1", "moving-object", 0.5), row("m2", "moving-object", None),
+                row("f1", "free", None, fp=2)]
+        city = city_false_alarms.CityRow(vehicle_hours=2.0, false_alarms=10, per_vehicle_hour=5.0)
+        got = {t.target: t for t in targets.check(rows, city)}
+        self.assertFalse(got["every collision warned"].met)
+        self.assertIn("m2: no warning", got["every collision warned"].gap)
+        self.assertIn("m1: 500 ms (160 ms short)", got["each warned >= 660 ms ahead"].gap)
+        self.assertIn("32 ms short", got["static-object mean >= 932 ms"].gap)  # mean 900 ms
+        self.assertFalse(got["zero warnings in the collision-free scenarios"].met)
+        city_row = got["<= 1 false alarm per vehicle-hour (city)"]
+        self.assertFalse(city_row.met)
+        self.assertIn("5x", city_row.gap)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,44 @@
+"""The runs of the evaluation over the designed scenarios: one row per variant, each a set of
+extra sumo-criticality options (name: value without dashes, as in a campaign file's `driver`
+section; true = a switch). To add a variant, add a row. The evaluation stops before running
+anything when the driver's --help does not list an option a chosen variant names (an older
+driver; evaluate.py).
+
+`ours` (open loop, --act warn, with SUMO's SSM device on the ego) is the reference every other
+row is compared with; `closed-loop` is the same scenarios with --act brake."""
+
+from dataclasses import dataclass, field
+
+
+@dataclass
+class Variant:
+    name: str
+    what: str  # one line for tables and captions
+    options: dict = field(default_factory=dict)
+    loop: str = "open"  # open: an ablation or preset beside ours; closed: --act brake
+    ssm: bool = False  # SUMO's SSM device on the ego (SSM does not change the traffic)
+
+    def missing_options(self, driver_help):
+        return [name for name in self.options if not driver_help.has(name)]
+
+
+VARIANTS = [
+    Variant("ours", "default estimator and options, --act warn", {"act": "warn"}, ssm=True),
+    Variant("closed-loop", "--act brake (brake while p >= the brake threshold)",
+            {"act": "brake"}, loop="closed"),
+    Variant("no-lateral-controller", "the paper's ablation: lateral controller off",
+            {"act": "warn", "no-lateral-controller": "true"}),
+    Variant("no-road-model", "the paper's ablation: no road model (virtual lanes only)",
+            {"act": "warn", "no-road-model": "true"}),
+    Variant("paper-literal", "the first implementation's scoring (ParamsPreset paper-literal)",
+            {"act": "warn", "preset": "paper-literal"}),
+]
+
+REFERENCE = "ours"
+
+
+def by_name(name):
+    for v in VARIANTS:
+        if v.name == name:
+            return v
+    raise KeyError(name)
