@@ -1,0 +1,63 @@
+#include "plugin/avoidance_manoeuvre.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace criticality::plugin {
+
+LateralPlan LateralPlanOf(const EscapeRoute& r) {
+  LateralPlan plan;
+  const size_t n = std::min(r.target_lanes.size(), r.time_s.size());
+  for (size_t k = 0; k < n; ++k) {
+    if (r.target_lanes[k] != 0) {
+      plan.direction = r.target_lanes[k] > 0 ? 1 : -1;
+      plan.cross_s = r.time_s[k];
+      break;
+    }
+  }
+  if (plan.direction == 0) return plan;
+  const size_t m = std::min(r.lateral_offset_m.size(), r.time_s.size());
+  double largest = 0.0;
+  for (size_t k = 0; k < m; ++k)
+    largest = std::max(largest, plan.direction * r.lateral_offset_m[k]);
+  plan.duration_s = plan.cross_s;
+  for (size_t k = 0; k < m; ++k) {
+    if (plan.direction * r.lateral_offset_m[k] >= 0.9 * largest) {
+      plan.duration_s = std::max(plan.cross_s, r.time_s[k]);
+      break;
+    }
+  }
+  if (m > 0) plan.final_offset_m = r.lateral_offset_m[m - 1];
+  return plan;
+}
+
+const EscapeRoute* ChooseRoute(const std::vector<EscapeRoute>& ranked, bool may_steer) {
+  for (const EscapeRoute& r : ranked) {
+    if (may_steer || LateralPlanOf(r).direction == 0) return &r;
+  }
+  return nullptr;
+}
+
+SpeedCommand ClosedLoopSpeed(const SpeedInputs& in, const BrakeModel& model, double step_s) {
+  SpeedCommand out;
+  const double e = in.emergency_decel_mps2;
+  const double ramp = model.jerk_mps3 * step_s;
+  double a = 0.0;
+  if (in.route_accel_mps2 < 0.0) {
+    if (in.elapsed_s + 1e-9 < model.latency_s) return out;  // the brake has not acted yet
+    const double target = std::max(in.route_accel_mps2, -e);
+    a = target < in.previous_accel_mps2 ? std::max(target, in.previous_accel_mps2 - ramp)
+                                        : std::min(target, in.previous_accel_mps2 + ramp);
+  } else {
+    if (in.previous_accel_mps2 >= 0.0) return out;  // nothing of ours to ramp off
+    a = std::min(0.0, in.previous_accel_mps2 + ramp);
+    if (a >= 0.0) return out;
+  }
+  a = std::max(a, -e);
+  out.command = true;
+  out.accel_mps2 = a;
+  out.speed_mps = std::min(in.own_speed_mps, std::max(0.0, in.speed_mps + a * step_s));
+  return out;
+}
+
+}  // namespace criticality::plugin
