@@ -102,6 +102,16 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
   return out;
 }
 
+bool ActStage::AnyNonBrakingRoute(const std::vector<EscapeRoute>& ranked) const {
+  if (ranked.empty()) return true;  // nothing says braking is needed
+  for (const EscapeRoute& e : ranked) {
+    if (options_.no_steer && LateralPlanOf(e, 1.0).direction != 0) continue;
+    if (e.collision_probability > ranked.front().collision_probability + kSameRisk) break;
+    if (e.profile_accel_mps2 >= -kBrakingAccel) return true;
+  }
+  return false;
+}
+
 bool ActStage::HandBack(const std::string& ego, const VehicleControl& c, double v) {
   const double reach = v + c.accel_mps2 * dt_;
   if (c.forced && c.own_speed_mps > reach + kJumpMargin) {
@@ -117,7 +127,14 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
   const double v = ego.state.speed_mps;
   if (!s->policy.engaged() && !s->handing_back && p < policy_config_.engage_threshold) return;
   const VehicleControl c = world_->ReadControl(ego.id);
-  const AvoidanceDecision d = s->policy.Step(t, p);
+  // The release waits while every escape route as safe as the best one brakes (p, computed
+  // with the ego braking, says little about handing back), and at a standstill while SUMO's own
+  // choice is a speed the scenario forces (its driver would drive on into what stopped it: an
+  // emergency brake holds the vehicle then).
+  const bool still_braking = !AnyNonBrakingRoute(r.escape_routes);
+  const bool held_stopped = s->commanding && v < kStandstill && c.forced &&
+                            c.own_speed_mps > v + c.accel_mps2 * dt_ + kJumpMargin;
+  const AvoidanceDecision d = s->policy.Step(t, p, !still_braking && !held_stopped);
   auto row = [&](const std::string& kind, const EscapeRoute* route) {
     ActionEvent a;
     a.ego = ego.id;
@@ -168,13 +185,15 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
   // The route: the best ranked one that can be executed; a lane change is decided once per
   // engagement (no lateral back and forth) and needs a lane of the same edge to go to.
   const LaneChanging lc = world_->LaneChangingModel();
-  const EscapeRoute* route = ChooseRoute(r.escape_routes, !options_.no_steer && !s->steered);
+  // The route's acceleration is followed after its lane change too (its lane change is not
+  // repeated); only --no-steer restricts the choice to routes that keep their lane.
+  const EscapeRoute* route = ChooseRoute(r.escape_routes, !options_.no_steer);
   LateralPlan plan;
-  if (route) plan = LateralPlanOf(*route);
+  if (route) plan = LateralPlanOf(*route, c.lane_width_m);
   const int target = c.lane_index + plan.direction;
-  if (plan.direction != 0 && !lc.sublane && (target < 0 || target >= c.lanes)) {
+  if (plan.direction != 0 && !s->steered && !lc.sublane && (target < 0 || target >= c.lanes)) {
     route = ChooseRoute(r.escape_routes, false);  // no such lane (e.g. counter traffic)
-    plan = route ? LateralPlanOf(*route) : LateralPlan{};
+    plan = route ? LateralPlanOf(*route, c.lane_width_m) : LateralPlan{};
   }
   if (plan.direction != 0 && route && !s->steered) {
     s->steered = true;
@@ -212,10 +231,13 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
     s->steer_row.speed_mps = s->steer_row.speed_after_mps = v;
     out->actions.push_back(s->steer_row);
   }
+  // Mitigation: when even the followed route probably collides, the lowest impact speed is
+  // what is left to reach: brake as hard as the type allows.
+  const bool mitigate = route && route->collision_probability >= kMitigation;
   SpeedInputs in;
   in.speed_mps = v;
   in.own_speed_mps = c.own_speed_mps;
-  in.route_accel_mps2 = route ? route->profile_accel_mps2 : -c.emergency_decel_mps2;
+  in.route_accel_mps2 = route && !mitigate ? route->profile_accel_mps2 : -c.emergency_decel_mps2;
   in.emergency_decel_mps2 = c.emergency_decel_mps2;
   in.elapsed_s = elapsed;
   in.previous_accel_mps2 = s->previous_accel;
@@ -228,12 +250,15 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
       a.accel_mps2 = cmd.accel_mps2;
       a.speed_after_mps = cmd.speed_mps;
       a.detail = SpeedModeText(c.speed_mode);
-      if (!route) a.detail += "; no escape route: emergencyDecel";
+      if (!route) a.detail += "; no escape route to follow: emergencyDecel";
+      if (mitigate) a.detail += "; the route probably collides: emergencyDecel (mitigation)";
       if (c.forced)
         a.detail += "; the scenario forces " + Fixed(c.own_speed_mps).substr(1) + " m/s";
       out->actions.push_back(a);
     }
     s->braking = s->commanding = true;
+  } else if (s->braking && held_stopped) {
+    world_->CommandSpeed(ego.id, 0.0);  // brought to a standstill: held there
   } else if (s->braking) {
     // The route no longer brakes and the braking is ramped off: the speed goes back to SUMO
     // while the engagement (and its lane change) goes on.

@@ -103,7 +103,13 @@ class ActStage {
    *  above what the type's accel reaches in one step (speed mode 0 would jump to it), commands
    *  that step of the ramp instead and returns false. */
   bool HandBack(const std::string& ego, const VehicleControl& c, double v);
-  static constexpr double kJumpMargin = 0.5;  // m/s
+  static constexpr double kJumpMargin = 0.5;    // m/s
+  static constexpr double kStandstill = 0.1;    // m/s
+  static constexpr double kBrakingAccel = 0.5;  // m/s^2: a route below -this still brakes
+  static constexpr double kSameRisk = 0.01;     // collision probability: as safe as the best
+  static constexpr double kMitigation = 0.5;    // route collision probability: brake fully
+  /** Whether a route as safe as the best (within kSameRisk) does not brake. */
+  bool AnyNonBrakingRoute(const std::vector<EscapeRoute>& ranked) const;
 
   const DriverOptions& options_;
   SumoWorld* world_;

@@ -5,35 +5,41 @@
 
 namespace criticality::plugin {
 
-LateralPlan LateralPlanOf(const EscapeRoute& r) {
+LateralPlan LateralPlanOf(const EscapeRoute& r, double lane_width_m) {
   LateralPlan plan;
-  const size_t n = std::min(r.target_lanes.size(), r.time_s.size());
-  for (size_t k = 0; k < n; ++k) {
-    if (r.target_lanes[k] != 0) {
-      plan.direction = r.target_lanes[k] > 0 ? 1 : -1;
-      plan.cross_s = r.time_s[k];
+  for (int lane : r.target_lanes) {
+    if (lane != 0) {
+      plan.direction = lane > 0 ? 1 : -1;
       break;
     }
   }
   if (plan.direction == 0) return plan;
   const size_t m = std::min(r.lateral_offset_m.size(), r.time_s.size());
+  if (m == 0) return plan;
   double largest = 0.0;
   for (size_t k = 0; k < m; ++k)
     largest = std::max(largest, plan.direction * r.lateral_offset_m[k]);
-  plan.duration_s = plan.cross_s;
+  plan.cross_s = r.time_s[m - 1];
   for (size_t k = 0; k < m; ++k) {
-    if (plan.direction * r.lateral_offset_m[k] >= 0.9 * largest) {
-      plan.duration_s = std::max(plan.cross_s, r.time_s[k]);
+    if (plan.direction * r.lateral_offset_m[k] >= 0.5 * lane_width_m) {
+      plan.cross_s = r.time_s[k];
       break;
     }
   }
-  if (m > 0) plan.final_offset_m = r.lateral_offset_m[m - 1];
+  plan.duration_s = r.time_s[m - 1];
+  for (size_t k = 0; k < m; ++k) {
+    if (plan.direction * r.lateral_offset_m[k] >= 0.9 * largest) {
+      plan.duration_s = r.time_s[k];
+      break;
+    }
+  }
+  plan.final_offset_m = r.lateral_offset_m[m - 1];
   return plan;
 }
 
 const EscapeRoute* ChooseRoute(const std::vector<EscapeRoute>& ranked, bool may_steer) {
   for (const EscapeRoute& r : ranked) {
-    if (may_steer || LateralPlanOf(r).direction == 0) return &r;
+    if (may_steer || LateralPlanOf(r, 1.0).direction == 0) return &r;
   }
   return nullptr;
 }

@@ -11,7 +11,9 @@ namespace criticality::plugin {
 /** The lane an escape route ends up in and how it gets there. */
 struct LateralPlan {
   int direction{0};  ///< -1 right, +1 left, 0 the route keeps its lane
-  /** Seconds after the route's start when its centre first lies in the target lane. */
+  /** Seconds after the route's start when its lateral offset first reaches half the lane
+   *  width toward the target lane (its centre crosses the boundary); the horizon's end when
+   *  it never does. */
   double cross_s{0.0};
   /** Seconds after the route's start when its lateral offset first reaches 90 % of its
    *  largest value toward the target lane: the manoeuvre's duration. */
@@ -19,7 +21,9 @@ struct LateralPlan {
   /** Its lateral offset at the end of the horizon (m, positive left). */
   double final_offset_m{0.0};
 };
-LateralPlan LateralPlanOf(const EscapeRoute& route);
+/** direction: the first non-zero EscapeRoute::target_lanes entry (the lane of the section
+ *  the route heads for); times from its lateral offset and the own lane's width. */
+LateralPlan LateralPlanOf(const EscapeRoute& route, double lane_width_m);
 
 /** The route to follow: the best ranked one (Result::escape_routes is ranked by collision
  *  probability, then own probability) that can be executed; a route that leaves the lane

@@ -20,7 +20,7 @@ void AvoidancePolicy::Reset() {
   below_ = false;
 }
 
-AvoidanceDecision AvoidancePolicy::Step(double time_s, double p) {
+AvoidanceDecision AvoidancePolicy::Step(double time_s, double p, bool may_release) {
   // Small tolerance on times so that 10 steps of 0.1 s make 1.0 s.
   constexpr double kEps = 1e-9;
   if (!engaged_) {
@@ -41,7 +41,7 @@ AvoidanceDecision AvoidancePolicy::Step(double time_s, double p) {
     below_ = false;
   }
   const bool held = time_s - engaged_since_s_ + kEps >= config_.min_hold_s;
-  if (held && below_ && time_s - below_since_s_ + kEps >= config_.release_after_s) {
+  if (may_release && held && below_ && time_s - below_since_s_ + kEps >= config_.release_after_s) {
     engaged_ = false;
     below_ = false;
     return AvoidanceDecision::kRelease;

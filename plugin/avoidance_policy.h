@@ -6,7 +6,9 @@
 //   engage:  p >= engage_threshold (--brake-threshold)
 //   hold:    while engaged, for at least min_hold_s (--act-hold) after engaging, whatever p
 //   release: after that, once p < release_threshold (--brake-release; hysteresis) has held
-//            for release_after_s (--act-release-after) without a break
+//            for release_after_s (--act-release-after) without a break, and the caller
+//            allows it (act_stage.cc: the escape route followed no longer brakes, and an ego
+//            held at a standstill is not handed to a speed a scenario forces)
 //
 // So one approach is one engagement: the probability may dip below the engage threshold (the
 // braking itself lowers it) without the control flipping back and forth every step.
@@ -27,8 +29,10 @@ class AvoidancePolicy {
   /** Throws std::invalid_argument for a config that cannot work (thresholds outside [0, 1],
    *  release above engage, negative times). */
   explicit AvoidancePolicy(const AvoidancePolicyConfig& config);
-  /** The decision at time_s (strictly increasing between calls) for probability p. */
-  AvoidanceDecision Step(double time_s, double p);
+  /** The decision at time_s (strictly increasing between calls) for probability p.
+   *  may_release = false defers a release that would otherwise come (the caller's veto, e.g.
+   *  the escape route still brakes); the countdown below the release threshold goes on. */
+  AvoidanceDecision Step(double time_s, double p, bool may_release = true);
   /** Forget the state (the ego left or is teleported): the next Step starts idle. */
   void Reset();
   bool engaged() const { return engaged_; }

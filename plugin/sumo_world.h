@@ -59,6 +59,7 @@ struct VehicleControl {
   std::string lane;
   int lane_index{0};
   int lanes{1};              ///< lanes of its edge
+  double lane_width_m{3.2};
   double lateral_offset_m{0.0};  ///< from its lane's centre (getLateralLanePosition)
 };
 

@@ -88,31 +88,35 @@ EscapeRoute LaneChangeLeft() {
   for (int n = 0; n < 20; ++n) {
     const double t = 0.1 * (n + 1);
     r.time_s.push_back(t);
-    // 3.5 m to the left over 2 s, linear; the boundary (1.75 m) is crossed at 1.0 s.
+    // 3.5 m to the left over 2 s, linear; the boundary (1.75 m) is crossed at 1.0 s. Its
+    // sections lie in the left lane from the start (as the estimator reports them).
     const double off = std::min(3.5, 3.5 * t / 2.0);
     r.lateral_offset_m.push_back(off);
-    r.target_lanes.push_back(off > 1.75 ? 1 : 0);
+    r.target_lanes.push_back(1);
   }
   return r;
 }
 
 TEST(LateralPlanOf, ReadsTheLaneChangeFromTheRoute) {
-  const LateralPlan p = LateralPlanOf(LaneChangeLeft());
+  const LateralPlan p = LateralPlanOf(LaneChangeLeft(), 3.5);
   EXPECT_EQ(p.direction, 1);
-  EXPECT_NEAR(p.cross_s, 1.1, 1e-12);     // the first instant in the left lane
+  EXPECT_NEAR(p.cross_s, 1.0, 1e-12);     // half the lane width reached
   EXPECT_NEAR(p.duration_s, 1.8, 1e-12);  // 90 % of 3.5 m reached
   EXPECT_NEAR(p.final_offset_m, 3.5, 1e-12);
   EscapeRoute right = LaneChangeLeft();
   for (double& x : right.lateral_offset_m) x = -x;
   for (int& l : right.target_lanes) l = -l;
-  EXPECT_EQ(LateralPlanOf(right).direction, -1);
-  EXPECT_NEAR(LateralPlanOf(right).duration_s, 1.8, 1e-12);
+  EXPECT_EQ(LateralPlanOf(right, 3.5).direction, -1);
+  EXPECT_NEAR(LateralPlanOf(right, 3.5).cross_s, 1.0, 1e-12);
+  EXPECT_NEAR(LateralPlanOf(right, 3.5).duration_s, 1.8, 1e-12);
+  // A wider lane is crossed later.
+  EXPECT_NEAR(LateralPlanOf(LaneChangeLeft(), 5.0).cross_s, 1.5, 1e-12);
 }
 
 TEST(LateralPlanOf, ARouteInItsLaneHasNoDirection) {
   EscapeRoute r = LaneChangeLeft();
   for (int& l : r.target_lanes) l = 0;
-  EXPECT_EQ(LateralPlanOf(r).direction, 0);
+  EXPECT_EQ(LateralPlanOf(r, 3.5).direction, 0);
 }
 
 TEST(ChooseRoute, TheBestRankedUnlessItSteersAndSteeringIsOff) {

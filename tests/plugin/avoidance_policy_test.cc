@@ -108,6 +108,15 @@ TEST(AvoidancePolicy, OscillationAcrossTheWholeBandReleasesAtMostOncePerHoldPeri
   EXPECT_GE(Count(e, D::kRelease), 1);
 }
 
+TEST(AvoidancePolicy, TheCallersVetoDefersTheRelease) {
+  AvoidancePolicy policy(Config());
+  ASSERT_EQ(policy.Step(0.0, 1.0), D::kEngage);
+  for (int k = 1; k <= 30; ++k) EXPECT_EQ(policy.Step(0.1 * k, 0.0, false), D::kHold) << k;
+  EXPECT_TRUE(policy.engaged());
+  // Once allowed, released at once: the estimate has been low long enough.
+  EXPECT_EQ(policy.Step(3.1, 0.0, true), D::kRelease);
+}
+
 TEST(AvoidancePolicy, ResetForgetsAnEngagement) {
   AvoidancePolicy policy(Config());
   ASSERT_EQ(policy.Step(0.0, 1.0), D::kEngage);
