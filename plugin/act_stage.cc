@@ -257,8 +257,10 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
       out->actions.push_back(a);
     }
     s->braking = s->commanding = true;
-  } else if (s->braking && held_stopped) {
-    world_->CommandSpeed(ego.id, 0.0);  // brought to a standstill: held there
+  } else if (s->braking && v < kStandstill) {
+    // Brought to a standstill: held there until the engagement ends (no brake / release
+    // every step while the routes at rest alternate between braking and not).
+    world_->CommandSpeed(ego.id, 0.0);
   } else if (s->braking) {
     // The route no longer brakes and the braking is ramped off: the speed goes back to SUMO
     // while the engagement (and its lane change) goes on.
