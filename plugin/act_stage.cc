@@ -102,12 +102,20 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
   return out;
 }
 
-bool ActStage::AnyNonBrakingRoute(const std::vector<EscapeRoute>& ranked) const {
+bool ActStage::Executable(const EscapeRoute& e, const VehicleControl& c) const {
+  const int direction = LateralPlanOf(e, c.lane_width_m).direction;
+  if (direction == 0) return true;
+  if (options_.no_steer) return false;
+  const int target = c.lane_index + direction;
+  return target >= 0 && target < c.lanes;  // a lane of the same edge (not counter traffic)
+}
+
+bool ActStage::AnyNonBrakingRoute(const std::vector<EscapeRoute>& ranked,
+                                  const VehicleControl& c) const {
   if (ranked.empty()) return true;  // nothing says braking is needed
   for (const EscapeRoute& e : ranked) {
-    if (options_.no_steer && LateralPlanOf(e, 1.0).direction != 0) continue;
     if (e.collision_probability > ranked.front().collision_probability + kSameRisk) break;
-    if (e.profile_accel_mps2 >= -kBrakingAccel) return true;
+    if (e.profile_accel_mps2 >= -kBrakingAccel && Executable(e, c)) return true;
   }
   return false;
 }
@@ -127,11 +135,13 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
   const double v = ego.state.speed_mps;
   if (!s->policy.engaged() && !s->handing_back && p < policy_config_.engage_threshold) return;
   const VehicleControl c = world_->ReadControl(ego.id);
-  // The release waits while every escape route as safe as the best one brakes (p, computed
+  // The release waits, unless the engagement's lane change is done, while every escape route
+  // as safe as the best one that the closed loop can execute brakes (p, computed
   // with the ego braking, says little about handing back), and at a standstill while SUMO's own
   // choice is a speed the scenario forces (its driver would drive on into what stopped it: an
   // emergency brake holds the vehicle then).
-  const bool still_braking = !AnyNonBrakingRoute(r.escape_routes);
+  const bool changed_lane = s->steered && !s->steer_pending;  // the old lane's danger is gone
+  const bool still_braking = !changed_lane && !AnyNonBrakingRoute(r.escape_routes, c);
   const bool held_stopped = s->commanding && v < kStandstill && c.forced &&
                             c.own_speed_mps > v + c.accel_mps2 * dt_ + kJumpMargin;
   const AvoidanceDecision d = s->policy.Step(t, p, !still_braking && !held_stopped);
@@ -241,6 +251,7 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
   in.emergency_decel_mps2 = c.emergency_decel_mps2;
   in.elapsed_s = elapsed;
   in.previous_accel_mps2 = s->previous_accel;
+  in.active = s->braking;
   const SpeedCommand cmd = ClosedLoopSpeed(in, brake_model_, dt_);
   if (cmd.command) {
     world_->CommandSpeed(ego.id, cmd.speed_mps);
@@ -257,25 +268,6 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
       out->actions.push_back(a);
     }
     s->braking = s->commanding = true;
-  } else if (s->braking && v < kStandstill) {
-    // Brought to a standstill: held there until the engagement ends (no brake / release
-    // every step while the routes at rest alternate between braking and not).
-    world_->CommandSpeed(ego.id, 0.0);
-  } else if (s->braking) {
-    // The route no longer brakes and the braking is ramped off: the speed goes back to SUMO
-    // while the engagement (and its lane change) goes on.
-    ActionEvent a = row("release", route);
-    a.speed_after_mps = c.own_speed_mps;
-    a.detail = "braking ended, the engagement goes on";
-    if (!HandBack(ego.id, c, v)) {
-      a.speed_after_mps = v + c.accel_mps2 * dt_;
-      a.detail += "; back to the scenario's speed at the type's accel";
-    } else {
-      s->commanding = false;
-    }
-    out->actions.push_back(a);
-    s->braking = false;
-    s->previous_accel = 0.0;
   } else if (s->commanding) {
     if (HandBack(ego.id, c, v)) s->commanding = false;
   }

@@ -108,8 +108,11 @@ class ActStage {
   static constexpr double kBrakingAccel = 0.5;  // m/s^2: a route below -this still brakes
   static constexpr double kSameRisk = 0.01;     // collision probability: as safe as the best
   static constexpr double kMitigation = 0.5;    // route collision probability: brake fully
-  /** Whether a route as safe as the best (within kSameRisk) does not brake. */
-  bool AnyNonBrakingRoute(const std::vector<EscapeRoute>& ranked) const;
+  /** Whether the closed loop can execute a route: it keeps its lane, or (steering allowed) it
+   *  goes to a lane of the same edge. */
+  bool Executable(const EscapeRoute& e, const VehicleControl& c) const;
+  /** Whether an executable route as safe as the best (within kSameRisk) does not brake. */
+  bool AnyNonBrakingRoute(const std::vector<EscapeRoute>& ranked, const VehicleControl& c) const;
 
   const DriverOptions& options_;
   SumoWorld* world_;

@@ -46,19 +46,15 @@ const EscapeRoute* ChooseRoute(const std::vector<EscapeRoute>& ranked, bool may_
 
 SpeedCommand ClosedLoopSpeed(const SpeedInputs& in, const BrakeModel& model, double step_s) {
   SpeedCommand out;
+  if (!in.active) {
+    if (in.route_accel_mps2 >= 0.0) return out;             // nothing to brake for
+    if (in.elapsed_s + 1e-9 < model.latency_s) return out;  // the brake acts later
+  }
   const double e = in.emergency_decel_mps2;
   const double ramp = model.jerk_mps3 * step_s;
-  double a = 0.0;
-  if (in.route_accel_mps2 < 0.0) {
-    if (in.elapsed_s + 1e-9 < model.latency_s) return out;  // the brake has not acted yet
-    const double target = std::max(in.route_accel_mps2, -e);
-    a = target < in.previous_accel_mps2 ? std::max(target, in.previous_accel_mps2 - ramp)
-                                        : std::min(target, in.previous_accel_mps2 + ramp);
-  } else {
-    if (in.previous_accel_mps2 >= 0.0) return out;  // nothing of ours to ramp off
-    a = std::min(0.0, in.previous_accel_mps2 + ramp);
-    if (a >= 0.0) return out;
-  }
+  const double target = std::max(in.route_accel_mps2, -e);
+  double a = target < in.previous_accel_mps2 ? std::max(target, in.previous_accel_mps2 - ramp)
+                                             : std::min(target, in.previous_accel_mps2 + ramp);
   a = std::max(a, -e);
   out.command = true;
   out.accel_mps2 = a;

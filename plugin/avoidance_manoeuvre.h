@@ -48,6 +48,8 @@ struct SpeedInputs {
   double elapsed_s{0.0};             ///< since the engagement began
   /** The acceleration commanded at the previous step of this engagement (0 at its start). */
   double previous_accel_mps2{0.0};
+  /** A speed of ours is already commanded in this engagement. */
+  bool active{false};
 };
 
 struct SpeedCommand {
@@ -57,9 +59,12 @@ struct SpeedCommand {
 };
 
 /** The speed for the next step: min(SUMO's own choice, ours), ours = speed + a dt where a
- *  follows the route's deceleration after the brake latency, changing at most by the jerk
- *  limit per second and never beyond the emergency deceleration; when the route does not
- *  brake, a braking in progress is ramped off at the jerk limit, then nothing is commanded. */
+ *  follows the route's acceleration, changing at most by the jerk limit per second and never
+ *  below minus the emergency deceleration. Nothing is commanded before the first braking: until
+ *  the route brakes and the brake latency has passed since the engagement began. Once active,
+ *  a command every step until the engagement ends (a route that stops braking ramps the
+ *  deceleration off, and one that accelerates lets SUMO's own choice win again), so the speed
+ *  control does not switch back and forth within an engagement. */
 SpeedCommand ClosedLoopSpeed(const SpeedInputs& in, const BrakeModel& model, double step_s);
 
 }  // namespace criticality::plugin

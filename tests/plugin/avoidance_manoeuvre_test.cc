@@ -73,14 +73,25 @@ TEST(ClosedLoopSpeed, NeverBelowZero) {
   EXPECT_DOUBLE_EQ(ClosedLoopSpeed(in, m, kDt).speed_mps, 0.0);
 }
 
-TEST(ClosedLoopSpeed, ARouteThatDoesNotBrakeRampsTheBrakeOffThenLeavesTheSpeedToSumo) {
+TEST(ClosedLoopSpeed, NothingBeforeTheFirstBrakingWhenTheRouteDoesNotBrake) {
   const BrakeModel m{0.2, 30.0};
-  SpeedCommand c = ClosedLoopSpeed(Braking(0.5, 2.0, -7.0), m, kDt);
+  EXPECT_FALSE(ClosedLoopSpeed(Braking(0.5, 2.0, 0.0), m, kDt).command);
+  EXPECT_FALSE(ClosedLoopSpeed(Braking(0.0, 2.0, 0.0), m, kDt).command);
+}
+
+TEST(ClosedLoopSpeed, OnceActiveARouteThatStopsBrakingRampsTheBrakeOffAndSumoTakesOver) {
+  const BrakeModel m{0.2, 30.0};
+  SpeedInputs in = Braking(2.0, 2.0, -7.0);
+  in.active = true;
+  SpeedCommand c = ClosedLoopSpeed(in, m, kDt);
   ASSERT_TRUE(c.command);
-  EXPECT_NEAR(c.accel_mps2, -4.0, 1e-12);
-  c = ClosedLoopSpeed(Braking(0.5, 2.1, -2.0), m, kDt);
-  EXPECT_FALSE(c.command);  // -2 + 3 >= 0: done
-  EXPECT_FALSE(ClosedLoopSpeed(Braking(0.5, 2.2, 0.0), m, kDt).command);
+  EXPECT_NEAR(c.accel_mps2, -4.0, 1e-12);  // ramped off at the jerk limit, not dropped
+  EXPECT_NEAR(c.speed_mps, 29.6, 1e-12);
+  in.previous_accel_mps2 = -1.0;
+  c = ClosedLoopSpeed(in, m, kDt);
+  ASSERT_TRUE(c.command);  // still commanded: no switching within an engagement
+  EXPECT_NEAR(c.accel_mps2, 2.0, 1e-12);
+  EXPECT_DOUBLE_EQ(c.speed_mps, 30.0);  // ours (30.2) above SUMO's own: SUMO's wins
 }
 
 EscapeRoute LaneChangeLeft() {
