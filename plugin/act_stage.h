@@ -1,14 +1,17 @@
 #pragma once
 // Stage 4 of a step: what the driver does with the estimates. Warning episodes (hysteresis
 // between --warn-threshold and --warn-release), the criticality published to SUMO, and under
-// --act brake a braking command while p >= --brake-threshold. An ego that arrives, vanishes or
-// starts a teleport ends its episode. The closed loop changes only this stage.
+// --act brake the closed loop: when to take control (avoidance_policy.h), what to do with it
+// (avoidance_manoeuvre.h: the escape route's braking and lane change) and handing it back. An
+// ego that arrives, vanishes or starts a teleport ends its episode and its engagement.
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "criticality/result.h"
+#include "plugin/avoidance_manoeuvre.h"
+#include "plugin/avoidance_policy.h"
 #include "plugin/driver_options.h"
 #include "plugin/observe_stage.h"
 #include "plugin/scene_stage.h"
@@ -38,12 +41,27 @@ struct WarningEvent {
   std::string edge;           ///< its edge (kOpen)
 };
 
+/** One action of the closed loop (--act brake), as the actions table records it. */
 struct ActionEvent {
   std::string ego;
-  std::string kind;  ///< brake | release
-  double accel_mps2{0.0};
-  double speed_mps{0.0};
-  double p_collision{0.0};
+  std::string kind;        ///< brake | steer | release
+  double accel_mps2{0.0};  ///< brake: the deceleration commanded (negative); else 0
+  double speed_mps{0.0};   ///< the ego's speed before
+  /** The speed after: brake: the speed commanded for the next step (min of SUMO's own choice
+   *  and ours); release: SUMO's own choice, handed back; steer: unchanged (= speed_mps). */
+  double speed_after_mps{0.0};
+  double p_collision{0.0};  ///< the --warn-on estimate that drove the decision
+  std::string lane_before;
+  /** steer: the target lane (or "LANE +0.80 m" for a sublane offset); else lane_before. */
+  std::string lane_after;
+  /** The escape route followed (EscapeRoute::ego_trajectory; -1: none, emergency braking),
+   *  its collision probability and its own probability. */
+  int route{-1};
+  double route_collision_probability{0.0};
+  double route_probability{0.0};
+  /** What the closed loop changed of the user's settings, or how it executed the route:
+   *  e.g. "speed mode 0 -> 0 (bit 2 cleared)", "lane-change mode 0 kept". */
+  std::string detail;
 };
 
 struct ActOutcome {
@@ -62,13 +80,45 @@ class ActStage {
 
  private:
   struct EgoState {
+    explicit EgoState(const AvoidancePolicyConfig& c) : policy(c) {}
     bool warning{false};
     double peak{0.0};
-    bool braking{false};
+    AvoidancePolicy policy;
+    bool braking{false};         ///< a deceleration of ours is commanded
+    bool commanding{false};      ///< a speed of ours is commanded (braking or handing back)
+    bool handing_back{false};    ///< released, ramping up to a speed the scenario forces
+    double previous_accel{0.0};  ///< the deceleration commanded at the previous step
+    bool steered{false};         ///< the engagement's lane change is decided
+    bool steer_pending{false};   ///< ... and waits for steer_at_s
+    double steer_at_s{0.0};
+    int steer_lane{0};
+    double steer_hold_s{0.0};
+    ActionEvent steer_row;
   };
+  EgoState& StateOf(const std::string& ego);
+  /** The closed loop for one ego at time t (--act brake). */
+  void Avoid(double t, const ObjectSnapshot& ego, const Result& r, double p, EgoState* s,
+             ActOutcome* out);
+  /** Gives the speed back to SUMO; where SUMO's own choice is a speed the scenario forces
+   *  above what the type's accel reaches in one step (speed mode 0 would jump to it), commands
+   *  that step of the ramp instead and returns false. */
+  bool HandBack(const std::string& ego, const VehicleControl& c, double v);
+  static constexpr double kJumpMargin = 0.5;    // m/s
+  static constexpr double kStandstill = 0.1;    // m/s
+  static constexpr double kBrakingAccel = 0.5;  // m/s^2: a route below -this still brakes
+  static constexpr double kSameRisk = 0.01;     // collision probability: as safe as the best
+  static constexpr double kMitigation = 0.5;    // route collision probability: brake fully
+  /** Whether the closed loop can execute a route: it keeps its lane, or (steering allowed) it
+   *  goes to a lane of the same edge. */
+  bool Executable(const EscapeRoute& e, const VehicleControl& c) const;
+  /** Whether an executable route as safe as the best (within kSameRisk) does not brake. */
+  bool AnyNonBrakingRoute(const std::vector<EscapeRoute>& ranked, const VehicleControl& c) const;
+
   const DriverOptions& options_;
   SumoWorld* world_;
   double dt_{0.1};
+  AvoidancePolicyConfig policy_config_;
+  BrakeModel brake_model_;
   std::map<std::string, EgoState> state_;
   std::set<std::string> release_after_teleport_;
 };

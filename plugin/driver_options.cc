@@ -164,9 +164,11 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
   action.add_options()(
       "act", po::value(&act)->default_value(act),
       "none: only record; warn: record warning episodes, publish the criticality as vehicle "
-      "parameter 'criticality' and colour the ego red while warning; brake: warn and also brake "
-      "(or follow the best escape route's acceleration) while p >= brake threshold, then hand "
-      "control back to SUMO")(
+      "parameter 'criticality' and colour the ego red while warning; brake: warn and also take "
+      "control (plugin/README.md, Closed loop): from p >= brake threshold follow the best "
+      "escape route (its braking, and its lane change unless --no-steer), never braking less "
+      "than SUMO would; hand control back after --act-hold once p stays below --brake-release "
+      "for --act-release-after")(
       "warn-on", po::value(&warn_on)->default_value(warn_on),
       "the estimate the warning reads: p_collision (the paper's p_cra: the probability that the "
       "scene ends in a collision of the ego, over all its hypotheses), p_reference (if the ego "
@@ -177,7 +179,16 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
       "warn-release", po::value(&o.warn_release)->default_value(-1.0, "0.8 x warn threshold"),
       "value below which a warning episode ends (hysteresis)")(
       "brake-threshold", po::value(&o.brake_threshold)->default_value(o.brake_threshold),
-      "value of the --warn-on estimate that triggers braking (--act brake)");
+      "value of the --warn-on estimate at which --act brake takes control")(
+      "brake-release", po::value(&o.brake_release)->default_value(-1.0, "0.5 x brake threshold"),
+      "value of the --warn-on estimate below which --act brake may hand control back "
+      "(hysteresis)")("act-hold", po::value(&o.act_hold_s)->default_value(o.act_hold_s),
+                      "seconds --act brake keeps control at least, whatever the estimate")(
+      "act-release-after",
+      po::value(&o.act_release_after_s)->default_value(o.act_release_after_s),
+      "seconds the estimate must stay below --brake-release before control is handed back")(
+      "no-steer", po::bool_switch(&o.no_steer),
+      "--act brake only brakes: follows the best escape route that keeps its lane");
   po::options_description est("Estimator");
   est.add_options()("backend", po::value(&backend)->default_value(backend),
                     "reference | cpu | cuda | auto (cuda when a GPU is usable, else cpu)")(
@@ -367,6 +378,11 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
   if (o.warn_release < 0.0) o.warn_release = 0.8 * o.warn_threshold;
   if (o.warn_release > o.warn_threshold)
     throw std::invalid_argument("--warn-release must not exceed --warn-threshold");
+  if (o.brake_release < 0.0) o.brake_release = 0.5 * o.brake_threshold;
+  if (o.brake_release > o.brake_threshold)
+    throw std::invalid_argument("--brake-release must not exceed --brake-threshold");
+  if (!(o.act_hold_s >= 0.0) || !(o.act_release_after_s >= 0.0))
+    throw std::invalid_argument("--act-hold and --act-release-after must be >= 0 s");
   if (!(o.range_m > 0.0)) throw std::invalid_argument("--range must be > 0");
   if (o.estimator.threads < 0) throw std::invalid_argument("--threads must be >= 0");
   try {

@@ -31,6 +31,13 @@ struct DriverOptions {
   WarnOn warn_on{WarnOn::kPCollision};
   double warn_threshold{0.9};
   double brake_threshold{0.9};
+  /** --act brake (plugin/avoidance_policy.h): control is handed back once the estimate has
+   *  stayed below brake_release (negative: 0.5 x brake_threshold) for act_release_after_s, and
+   *  not before act_hold_s after taking it; no_steer: braking only. */
+  double brake_release{-1.0};
+  double act_hold_s{1.0};
+  double act_release_after_s{0.5};
+  bool no_steer{false};
   /** Params preset the estimator parameters start from (criticality::ParamsPresetNames()). */
   std::string preset{"default"};
   /** A warning episode ends when p_cra falls below this (hysteresis, so that one approach is

@@ -85,7 +85,21 @@ void RecordStage::Run(const Observation& obs, const SceneBatch& batch, const Act
     }
   }
   for (const ActionEvent& a : acted.actions) {
-    db_->AddAction(t, a.ego, a.kind, a.accel_mps2, a.speed_mps, a.p_collision);
+    ActionRow row;
+    row.time_s = t;
+    row.ego = a.ego;
+    row.kind = a.kind;
+    row.accel_mps2 = a.accel_mps2;
+    row.speed_mps = a.speed_mps;
+    row.p_collision = a.p_collision;
+    row.speed_after_mps = a.speed_after_mps;
+    row.lane_before = a.lane_before;
+    row.lane_after = a.lane_after;
+    row.route = a.route;
+    row.route_collision_probability = a.route_collision_probability;
+    row.route_probability = a.route_probability;
+    row.detail = a.detail;
+    db_->AddAction(row);
   }
   for (const EgoStep& s : acted.steps) {
     StepRow row;

@@ -26,7 +26,9 @@ CREATE TABLE warnings(
   start_s REAL NOT NULL, end_s REAL, peak_p REAL NOT NULL, x_m REAL, y_m REAL, edge TEXT);
 CREATE TABLE actions(
   run_id INTEGER NOT NULL REFERENCES runs(id), time_s REAL NOT NULL, ego TEXT NOT NULL,
-  kind TEXT NOT NULL, accel_mps2 REAL, speed_mps REAL, p_collision REAL);
+  kind TEXT NOT NULL, accel_mps2 REAL, speed_mps REAL, p_collision REAL, speed_after_mps REAL,
+  lane_before TEXT, lane_after TEXT, route INTEGER, route_collision_probability REAL,
+  route_probability REAL, detail TEXT);
 CREATE TABLE collisions(
   run_id INTEGER NOT NULL REFERENCES runs(id), time_s REAL NOT NULL, collider TEXT NOT NULL,
   victim TEXT NOT NULL, collider_type TEXT, victim_type TEXT, type TEXT, lane TEXT, pos_m REAL,
@@ -88,7 +90,7 @@ ResultsDb::ResultsDb(const std::string& path) : path_(path) {
         "VALUES(?,?,?,NULL,?,?,?,?)");
     peak_warning_ = Prepare("UPDATE warnings SET peak_p=? WHERE id=?");
     close_warning_ = Prepare("UPDATE warnings SET end_s=? WHERE id=?");
-    action_ = Prepare("INSERT INTO actions VALUES(?,?,?,?,?,?,?)");
+    action_ = Prepare("INSERT INTO actions VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?)");
     // ?16: the tolerance for an episode that ended just before the impact (one step).
     collision_ = Prepare(
         "INSERT INTO collisions VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,"
@@ -225,16 +227,29 @@ void ResultsDb::CloseWarning(long long id, double end_s) {
   Step(close_warning_, "warning end");
 }
 
-void ResultsDb::AddAction(double time_s, const std::string& ego, const std::string& kind,
-                          double accel, double speed, double p) {
-  sqlite3_bind_int64(action_, 1, run_id_);
-  sqlite3_bind_double(action_, 2, time_s);
-  sqlite3_bind_text(action_, 3, ego.c_str(), -1, SQLITE_TRANSIENT);
-  sqlite3_bind_text(action_, 4, kind.c_str(), -1, SQLITE_TRANSIENT);
-  sqlite3_bind_double(action_, 5, accel);
-  sqlite3_bind_double(action_, 6, speed);
-  sqlite3_bind_double(action_, 7, p);
-  Step(action_, "action");
+void ResultsDb::AddAction(const ActionRow& a) {
+  sqlite3_stmt* s = action_;
+  sqlite3_bind_int64(s, 1, run_id_);
+  sqlite3_bind_double(s, 2, a.time_s);
+  sqlite3_bind_text(s, 3, a.ego.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(s, 4, a.kind.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_double(s, 5, a.accel_mps2);
+  sqlite3_bind_double(s, 6, a.speed_mps);
+  sqlite3_bind_double(s, 7, a.p_collision);
+  sqlite3_bind_double(s, 8, a.speed_after_mps);
+  sqlite3_bind_text(s, 9, a.lane_before.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(s, 10, a.lane_after.c_str(), -1, SQLITE_TRANSIENT);
+  if (a.route >= 0) {
+    sqlite3_bind_int(s, 11, a.route);
+    sqlite3_bind_double(s, 12, a.route_collision_probability);
+    sqlite3_bind_double(s, 13, a.route_probability);
+  } else {
+    sqlite3_bind_null(s, 11);
+    sqlite3_bind_null(s, 12);
+    sqlite3_bind_null(s, 13);
+  }
+  sqlite3_bind_text(s, 14, a.detail.c_str(), -1, SQLITE_TRANSIENT);
+  Step(s, "action");
 }
 
 void ResultsDb::AddCollision(const CollisionRow& c) {

@@ -17,6 +17,18 @@ class ResultsError : public std::runtime_error {
   explicit ResultsError(const std::string& what) : std::runtime_error(what) {}
 };
 
+/** One row of the actions table (--act brake): see plugin/README.md. */
+struct ActionRow {
+  double time_s{0.0};
+  std::string ego, kind;  ///< kind: brake | steer | release
+  double accel_mps2{0.0}, speed_mps{0.0}, p_collision{0.0};
+  double speed_after_mps{0.0};
+  std::string lane_before, lane_after;
+  int route{-1};  ///< -1: none (stored as NULL)
+  double route_collision_probability{0.0}, route_probability{0.0};
+  std::string detail;
+};
+
 struct StepRow {
   double time_s{0.0};
   std::string ego;
@@ -68,8 +80,7 @@ class ResultsDb {
                         double y_m, const std::string& edge);
   void UpdateWarningPeak(long long id, double peak);
   void CloseWarning(long long id, double end_s);
-  void AddAction(double time_s, const std::string& ego, const std::string& kind, double accel_mps2,
-                 double speed_mps, double p_collision);
+  void AddAction(const ActionRow& a);
   /** Records a collision and its anticipation time: collision time minus the start of the
    *  latest warning episode of the collider or victim that began at or before it and was still
    *  open at it, or ended at most one step before it; NULL when there is none. */

@@ -44,6 +44,31 @@ struct StepReport {
   std::vector<SumoCollision> collisions;
 };
 
+/** What the closed loop reads about a vehicle before acting on it. */
+struct VehicleControl {
+  /** SUMO's own choice of speed for the next step: a speed the scenario forces (a scripted
+   *  setSpeed, or the ramp of a scripted slowDown, capped by the model's speed when the
+   *  user's speed mode regards the safe speed), else the speed SUMO's model chose without
+   *  TraCI (getSpeedWithoutTraCI: its car following, a route's stop; one step old). */
+  double own_speed_mps{0.0};
+  bool forced{false};  ///< own_speed_mps is a speed the scenario forces
+  double accel_mps2{2.6};
+  double emergency_decel_mps2{9.0};
+  int speed_mode{31};        ///< the user's (as set before or while the closed loop acts)
+  int lane_change_mode{0};   ///< as SUMO has it now
+  std::string lane;
+  int lane_index{0};
+  int lanes{1};              ///< lanes of its edge
+  double lane_width_m{3.2};
+  double lateral_offset_m{0.0};  ///< from its lane's centre (getLateralLanePosition)
+};
+
+/** How SUMO moves vehicles sideways. */
+struct LaneChanging {
+  bool sublane{false};      ///< lateral-resolution > 0
+  double duration_s{0.0};   ///< lanechange.duration: 0 = a lane change takes one step
+};
+
 /** Whether SUMO knows an ID (loaded, whether or not it departed yet). */
 enum class Known { kUnknown, kVehicle, kPerson };
 
@@ -81,11 +106,28 @@ class SumoWorld {
                                const ExtractionConfig& cfg) = 0;
   /** A vehicle left the simulation: drop what is kept about it (memory stays flat). */
   virtual void Forget(const std::string& vehicle) = 0;
-  virtual double EmergencyDecel(const std::string& vehicle) = 0;
   /** Vehicle parameter "criticality" = p; the ego turns red while warning. */
   virtual void Publish(const std::string& ego, double p, bool warning) = 0;
+
+  // ---- The closed loop (--act brake; act_stage.cc) ----------------------------------------
+  /** What acting on a vehicle needs, read now (before this step's commands). */
+  virtual VehicleControl ReadControl(const std::string& vehicle) = 0;
+  /** Commands `speed` for the next step, under the user's speed mode with "regard maximum
+   *  deceleration" (bit 2) cleared so that SUMO applies a deceleration up to the type's
+   *  emergencyDecel (the caller never asks for more). Scripted speed events for the vehicle
+   *  are then recorded (ReadControl's own speed includes them) but not sent until
+   *  ReleaseSpeed. */
   virtual void CommandSpeed(const std::string& ego, double speed) = 0;
+  /** Hands the speed back: the speed mode the user set, and the speed a scenario forces
+   *  (setSpeed, or the rest of a slowDown still running), else setSpeed(-1). */
   virtual void ReleaseSpeed(const std::string& ego) = 0;
+  /** changeLane(lane_index, hold_s): SUMO keeps trying for hold_s, subject to the vehicle's
+   *  lane-change mode (bits 8-9: how a TraCI change regards other drivers). */
+  virtual void ChangeLane(const std::string& ego, int lane_index, double hold_s) = 0;
+  /** changeSublane(lateral_m) (sublane model; positive left). */
+  virtual void ChangeSublane(const std::string& ego, double lateral_m) = 0;
+  /** How this SUMO moves vehicles sideways (options lateral-resolution, lanechange.duration). */
+  virtual LaneChanging LaneChangingModel() = 0;
   /** Applies a scripted event; returns false when its target is not in the network (yet). */
   virtual bool Apply(const ScenarioEvent& e) = 0;
   virtual void Close() = 0;
