@@ -80,9 +80,16 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
       } else if (s.warning && p > s.peak) {
         s.peak = p;
         out.warnings.push_back({ego.id, WarningChange::kPeak, p, 0.0, 0.0, ""});
-      } else if (s.warning && p < o.warn_release) {
-        s.warning = false;
-        out.warnings.push_back({ego.id, WarningChange::kClose, p, 0.0, 0.0, ""});
+      }
+      // The episode ends once p has stayed below the release level for --warn-release-after.
+      if (s.warning && p >= o.warn_release) s.below_release_since = -1.0;
+      if (s.warning && p < o.warn_release) {
+        if (s.below_release_since < 0.0) s.below_release_since = obs.time_s;
+        if (obs.time_s - s.below_release_since >= o.warn_release_after_s - 1e-9) {
+          s.warning = false;
+          s.below_release_since = -1.0;
+          out.warnings.push_back({ego.id, WarningChange::kClose, p, 0.0, 0.0, ""});
+        }
       }
       world_->Publish(ego.id, p, s.warning);
     }

@@ -83,6 +83,7 @@ class ActStage {
     explicit EgoState(const AvoidancePolicyConfig& c) : policy(c) {}
     bool warning{false};
     double peak{0.0};
+    double below_release_since{-1.0};  ///< time p fell below --warn-release (-1: it is not)
     AvoidancePolicy policy;
     bool braking{false};         ///< a deceleration of ours is commanded
     bool commanding{false};      ///< a speed of ours is commanded (braking or handing back)

@@ -178,14 +178,17 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
                           "value of the --warn-on estimate that starts a warning episode")(
       "warn-release", po::value(&o.warn_release)->default_value(-1.0, "0.8 x warn threshold"),
       "value below which a warning episode ends (hysteresis)")(
+      "warn-release-after",
+      po::value(&o.warn_release_after_s)->default_value(o.warn_release_after_s),
+      "seconds the estimate must stay below --warn-release before the episode ends (a one-step "
+      "dip does not split a warning; 0: end at the first step below)")(
       "brake-threshold", po::value(&o.brake_threshold)->default_value(o.brake_threshold),
       "value of the --warn-on estimate at which --act brake takes control")(
       "brake-release", po::value(&o.brake_release)->default_value(-1.0, "0.5 x brake threshold"),
       "value of the --warn-on estimate below which --act brake may hand control back "
       "(hysteresis)")("act-hold", po::value(&o.act_hold_s)->default_value(o.act_hold_s),
                       "seconds --act brake keeps control at least, whatever the estimate")(
-      "act-release-after",
-      po::value(&o.act_release_after_s)->default_value(o.act_release_after_s),
+      "act-release-after", po::value(&o.act_release_after_s)->default_value(o.act_release_after_s),
       "seconds the estimate must stay below --brake-release before control is handed back")(
       "no-steer", po::bool_switch(&o.no_steer),
       "--act brake only brakes: follows the best escape route that keeps its lane");
@@ -378,6 +381,8 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
   if (o.warn_release < 0.0) o.warn_release = 0.8 * o.warn_threshold;
   if (o.warn_release > o.warn_threshold)
     throw std::invalid_argument("--warn-release must not exceed --warn-threshold");
+  if (!(o.warn_release_after_s >= 0.0) || !std::isfinite(o.warn_release_after_s))
+    throw std::invalid_argument("--warn-release-after must be >= 0 s");
   if (o.brake_release < 0.0) o.brake_release = 0.5 * o.brake_threshold;
   if (o.brake_release > o.brake_threshold)
     throw std::invalid_argument("--brake-release must not exceed --brake-threshold");

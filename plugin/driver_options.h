@@ -43,6 +43,9 @@ struct DriverOptions {
   /** A warning episode ends when p_cra falls below this (hysteresis, so that one approach is
    *  one episode); negative: 0.8 x warn_threshold. */
   double warn_release{-1.0};
+  /** ... once it has stayed below for this long (s): a one-step dip does not split an approach
+   *  into two episodes. 0: at the first step below. */
+  double warn_release_after_s{0.3};
   double range_m{80.0};
   Params params;
   EstimatorOptions estimator;

@@ -60,6 +60,16 @@ TEST(DriverOptions, CommandLine) {
   EXPECT_EQ(o.options.params.profiles, 5);
   EXPECT_EQ(o.options.sumo_args, (std::vector<std::string>{"--seed", "7"}));
   EXPECT_DOUBLE_EQ(o.options.warn_release, 0.8 * o.options.warn_threshold);
+  EXPECT_DOUBLE_EQ(o.options.warn_release_after_s, 0.3);
+  const ParseOutcome z = Parse({"-c", cfg.c_str(), "--ego", "a", "--output", "x.sqlite",
+                                "--warn-release-after", "0"});
+  EXPECT_DOUBLE_EQ(z.options.warn_release_after_s, 0.0);
+  try {
+    Parse({"-c", cfg.c_str(), "--ego", "a", "--output", "x.sqlite", "--warn-release-after", "-1"});
+    ADD_FAILURE() << "--warn-release-after -1 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--warn-release-after"), std::string::npos) << e.what();
+  }
 }
 
 TEST(DriverOptions, ConfigFileIsRelativeToItsFolderAndCommandLineWins) {

@@ -127,7 +127,9 @@ def replay_differences(r, helptext):
     the driver's defaults) differ from the driver's warnings table."""
     thr, rel = open_loop.warn_settings(r, helptext)
     column = open_loop.warn_column(r, helptext)
-    return [ego for ego in r.steps if not open_loop.replay_matches(r, ego, thr, rel, column)]
+    after = open_loop.warn_release_after(r, helptext)
+    return [ego for ego in r.steps
+            if not open_loop.replay_matches(r, ego, thr, rel, column, after)]
 
 
 def check(scenario, kind, values, facts, rec):

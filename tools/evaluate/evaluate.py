@@ -206,12 +206,14 @@ def main(argv):
             city_ssm = ssm_log.read_ssm(os.path.join(city_run.folder, campaign_runs.SSM_FILE))
         city_row = city_false_alarms.judge_city(city_run, city_setting, city_ssm)
     ref_runs = runs.get(ref, {})
-    release_ratio = 0.8
+    release_ratio, release_after = 0.8, 0.0
     first = next((r for r in ref_runs.values() if r.ok), None)
     if first is not None:
         thr, rel = open_loop.warn_settings(first, helptext)
         release_ratio = rel / thr if thr > 0 else 0.8
-    sweep = (threshold_sweep.sweep_ours(designed, ref_runs, city_run, release_ratio) +
+        release_after = open_loop.warn_release_after(first, helptext)
+    sweep = (threshold_sweep.sweep_ours(designed, ref_runs, city_run, release_ratio,
+                                        release_after_s=release_after) +
              threshold_sweep.sweep_ssm(designed, ref_runs, ssm, city_run, city_ssm))
     target_rows = targets.check(rows.get(ref, []), city_row)
     info["wall_s"]["total"] = round(time.time() - started, 1)

@@ -55,6 +55,15 @@ def warn_settings(run, driver_help):
     return thr, rel
 
 
+def warn_release_after(run, driver_help):
+    """--warn-release-after of a run (s): its command line, else the driver's default (0 for a
+    driver without the option: it ended episodes at the first step below the release)."""
+    v = run.option_value("warn-release-after")
+    if v is not None:
+        return float(v)
+    return driver_help.default_float("warn-release-after", 0.0)
+
+
 def warn_column(run, driver_help):
     """The steps column the run's warning reads (--warn-on: p_collision, p_reference or
     unavoidability; the driver's default when the run does not say)."""
@@ -66,12 +75,12 @@ def _driver_episodes(run, ego):
     return [we.Episode(w.start_s, w.end_s, w.peak_p) for w in run.ego_warnings(ego)]
 
 
-def replay_matches(run, ego, threshold, release, column="p_collision"):
+def replay_matches(run, ego, threshold, release, column="p_collision", release_after_s=0.0):
     """Whether replaying the driver's rule on the recorded series of the column the warning
     reads gives the driver's episode starts (a check of the replay the threshold sweep relies
     on)."""
     times, p = run.series(ego, column)
-    mine = we.episodes(times, p, threshold, release, run.step_length_s)
+    mine = we.episodes(times, p, threshold, release, run.step_length_s, release_after_s)
     theirs = _driver_episodes(run, ego)
     return [round(e.start_s, 3) for e in mine] == [round(e.start_s, 3) for e in theirs]
 
@@ -106,7 +115,8 @@ def judge_run(scenario, variant, run, driver_help, ssm_conflicts=None):
     quiet = [v for t, v in zip(times, p) if v is not None and
              (not scenario.collides or t <= scenario.quiet_until_s + 1e-9)]
     row.peak_p_quiet = max(quiet) if quiet else None
-    row.replay_matches_driver = replay_matches(run, ego, row.threshold, release, column)
+    row.replay_matches_driver = replay_matches(run, ego, row.threshold, release, column,
+                                               warn_release_after(run, driver_help))
     # Unavoidable: a run of steps at or above the level that lasts until the collision.
     times, u = run.series(ego, "unavoidability")
     if not times:

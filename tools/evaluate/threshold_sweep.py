@@ -59,7 +59,8 @@ def _collision_time(run, s):
     return hit.time_s if hit else None
 
 
-def sweep_ours(scenarios, runs, city_run, release_ratio=0.8, thresholds=THRESHOLDS):
+def sweep_ours(scenarios, runs, city_run, release_ratio=0.8, thresholds=THRESHOLDS,
+               release_after_s=0.0):
     """runs: {scenario name: Run} of the open-loop variant; city_run: the city Run or None."""
     rows = []
     for thr in thresholds:
@@ -70,13 +71,14 @@ def sweep_ours(scenarios, runs, city_run, release_ratio=0.8, thresholds=THRESHOL
             if run is None or not run.ok:
                 continue
             times, p = run.series(s.ego, "p_collision")
-            eps = we.episodes(times, p, thr, release_ratio * thr, run.step_length_s)
+            eps = we.episodes(times, p, thr, release_ratio * thr, run.step_length_s,
+                              release_after_s)
             judged.append((s, we.judge(eps, _collision_time(run, s), s.quiet_until_s,
                                        run.step_length_s, collision_free=not s.collides)))
         _aggregate(row, judged)
         if city_run is not None and city_run.ok:
             by_ego = {ego: we.episodes(st["time_s"], st["p_collision"], thr, release_ratio * thr,
-                                       city_run.step_length_s)
+                                       city_run.step_length_s, release_after_s)
                       for ego, st in city_run.steps.items()}
             vh = city_false_alarms.vehicle_hours(city_run)
             if vh > 0:

@@ -1,8 +1,9 @@
 """Warning episodes and what they mean for one scenario.
 
 The driver's rule (plugin/README.md, "Acting"): an episode opens at the first step with
-p >= threshold and closes at the first step with p < release (release = 0.8 x threshold unless
---warn-release says otherwise); an ego that leaves ends it. `episodes` replays that rule on a
+p >= threshold and closes at the first step at which p has stayed below release for
+release_after_s (release = 0.8 x threshold unless --warn-release says otherwise; release_after_s
+= --warn-release-after, 0.3 s by default; 0: the first step below); an ego that leaves ends it. `episodes` replays that rule on a
 recorded series, so that any threshold can be judged without a rerun (threshold_sweep.py); at the
 run's own threshold it gives the driver's `warnings` table (checked by the tests and at every
 evaluation).
@@ -23,12 +24,13 @@ class Episode:
     peak: float
 
 
-def episodes(times, values, threshold, release, step_s):
+def episodes(times, values, threshold, release, step_s, release_after_s=0.0):
     """The episodes of one ego's series (times ascending). A gap of more than 1.5 steps (the ego
     absent, e.g. teleported) closes an open episode one step after its last value."""
     out = []
     open_ep = None
     last_t = None
+    below_since = None
     for t, v in zip(times, values):
         if v is None:
             continue
@@ -39,11 +41,16 @@ def episodes(times, values, threshold, release, step_s):
         if open_ep is None:
             if v >= threshold:
                 open_ep = Episode(t, None, v)
+                below_since = None
         elif v < release:
-            open_ep.end_s = t
-            out.append(open_ep)
-            open_ep = None
+            if below_since is None:
+                below_since = t
+            if t - below_since >= release_after_s - 1e-9:
+                open_ep.end_s = t
+                out.append(open_ep)
+                open_ep = None
         else:
+            below_since = None
             open_ep.peak = max(open_ep.peak, v)
         last_t = t
     if open_ep is not None:

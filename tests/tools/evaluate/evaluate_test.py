@@ -63,6 +63,17 @@ class EpisodesTest(unittest.TestCase):
         self.assertEqual([(e.start_s, e.end_s) for e in eps], [(0.1, 0.4), (0.5, 0.7)])
         self.assertAlmostEqual(eps[1].peak, 0.7)
 
+    def test_release_after_keeps_an_episode_through_a_short_dip(self):
+        t = times(10)
+        p = [0.1, 0.6, 0.3, 0.6, 0.3, 0.3, 0.3, 0.3, 0.6, 0.1]
+        # 0.3 s: the one-step dip at 0.2 s does not end it; below from 0.4 s, it ends at 0.7 s.
+        eps = we.episodes(t, p, 0.5, 0.4, STEP, release_after_s=0.3)
+        self.assertEqual([(e.start_s, e.end_s) for e in eps], [(0.1, 0.7), (0.8, None)])
+        # 0 (the first step below): three episodes.
+        eps = we.episodes(t, p, 0.5, 0.4, STEP, release_after_s=0.0)
+        self.assertEqual([(e.start_s, e.end_s) for e in eps],
+                         [(0.1, 0.2), (0.3, 0.4), (0.8, 0.9)])
+
     def test_open_at_the_end_and_closed_by_a_gap(self):
         eps = we.episodes([0.0, 0.1, 0.5, 0.6], [0.9, 0.9, 0.9, 0.9], 0.5, 0.4, STEP)
         self.assertEqual([(e.start_s, e.end_s) for e in eps], [(0.0, 0.2), (0.5, None)])
