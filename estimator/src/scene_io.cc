@@ -36,6 +36,18 @@ void WriteLanes(std::ostream& out, const LaneSet& lanes) {
   one("right", lanes.right);
 }
 
+const char* StopReasonName(StopLine::Reason r) {
+  switch (r) {
+    case StopLine::Reason::kRedLight:
+      return "red";
+    case StopLine::Reason::kYellowLight:
+      return "yellow";
+    case StopLine::Reason::kYield:
+      return "yield";
+  }
+  return "?";
+}
+
 struct LineReader {
   std::vector<std::string> words;
   size_t next{0};
@@ -93,6 +105,10 @@ void WriteScene(std::ostream& out, const Scene& scene) {
     WriteHeight(out, v.height_m);
     out << ' ' << (v.lanes ? 1 : 0) << '\n';
     if (v.lanes) WriteLanes(out, *v.lanes);
+    if (v.stop_line) {
+      out << "stop " << StopReasonName(v.stop_line->reason) << ' ' << v.stop_line->distance_m
+          << '\n';
+    }
   }
   for (const Pedestrian& p : scene.pedestrians) {
     out << "pedestrian " << p.id;
@@ -104,6 +120,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
 Scene ReadScene(std::istream& in, const std::string& source) {
   Scene scene;
   LaneSet* lanes = nullptr;
+  Vehicle* vehicle = nullptr;  // the last vehicle read, for its 'stop' line
   bool header = false, ego = false;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
@@ -129,6 +146,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       scene.ego.width_m = r.Num();
       scene.ego.height_m = r.Height();
       lanes = &scene.ego.lanes;
+      vehicle = nullptr;
       ego = true;
     } else if (kind == "vehicle") {
       Vehicle v;
@@ -141,6 +159,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       if (has_lanes) v.lanes = LaneSet{};
       scene.vehicles.push_back(std::move(v));
       lanes = has_lanes ? &*scene.vehicles.back().lanes : nullptr;
+      vehicle = &scene.vehicles.back();
     } else if (kind == "pedestrian") {
       Pedestrian p;
       p.id = r.Word();
@@ -149,6 +168,22 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       p.width_m = r.Num();
       scene.pedestrians.push_back(std::move(p));
       lanes = nullptr;
+      vehicle = nullptr;
+    } else if (kind == "stop") {
+      if (!vehicle) throw InputError(r.where + ": 'stop' must follow a vehicle");
+      const std::string reason = r.Word();
+      StopLine stop;
+      if (reason == "red") {
+        stop.reason = StopLine::Reason::kRedLight;
+      } else if (reason == "yellow") {
+        stop.reason = StopLine::Reason::kYellowLight;
+      } else if (reason == "yield") {
+        stop.reason = StopLine::Reason::kYield;
+      } else {
+        throw InputError(r.where + ": stop reason '" + reason + "' must be red, yellow or yield");
+      }
+      stop.distance_m = r.Num();
+      vehicle->stop_line = stop;
     } else if (kind == "lane") {
       if (!lanes)
         throw InputError(r.where + ": 'lane' must follow an ego or a vehicle with LANES 1");
@@ -171,7 +206,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
         throw InputError(r.where + ": lane '" + which + "' must be own, left or right");
     } else {
       throw InputError(r.where + ": unknown record '" + kind +
-                       "' (ego, vehicle, pedestrian, lane)");
+                       "' (ego, vehicle, pedestrian, lane, stop)");
     }
     if (r.next != r.words.size()) throw InputError(r.where + ": too many values");
   }
