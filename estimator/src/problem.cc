@@ -306,11 +306,16 @@ double StopDistance(const core::HypothesisSet& h, double target, const Params& p
 // Puts the stopping profile into `a` (one-track targets): the constant deceleration that stops
 // the front at the line (bisection on StopDistance, to 1e-4 m/s^2; a standing vehicle: the
 // comfortable deceleration, which holds it), in the slot nearest to it among those that are
-// neither the minimum, the maximum nor the reference. Returns its index, or -1 when even the
-// minimum overshoots the line (the vehicle cannot comply) or no slot is free.
+// neither the minimum, the maximum nor the reference. Returns its index, or -1 (the estimate is
+// then the one without a line) when the current acceleration already stops the vehicle before
+// the line (it complies as it is), when even the minimum overshoots the line (it cannot comply)
+// or when no slot is free.
 int StopProfile(const core::HypothesisSet& h, const StopObligation& stop, int reference,
                 const Params& p, std::vector<double>* a) {
   const int n = static_cast<int>(a->size());
+  // Already stopping before the line at its current acceleration: that complies, and stays the
+  // reference (nothing to add).
+  if (reference >= 0 && StopDistance(h, (*a)[reference], p) <= stop.distance_m) return -1;
   double lo = p.vehicle_accel_min_mps2, hi = 0.0;
   if (StopDistance(h, lo, p) > stop.distance_m) return -1;
   for (int i = 0; i < 60 && hi - lo > 1e-4; ++i) {

@@ -85,6 +85,16 @@ TEST(StopObligation, ARunnerThatCannotStopComfortablyAndDoesNotBrakeStaysCritica
   EXPECT_LT(PCollision(braking), 0.1);
 }
 
+TEST(StopObligation, ACarAlreadyStoppingBeforeTheLineKeepsItsOwnBraking) {
+  // Braking at 5 m/s^2 from 8 m/s stops it within 6.4 m: before a line 6.6 m ahead. Its
+  // current acceleration complies; the gentler stop exactly at the line is not made the
+  // reference (it would bring the car closer to the ego than it is going).
+  Scene braking = CrossingScene(6.6, -5.0);
+  const double p_free = PCollision(braking);
+  braking.vehicles[0].stop_line = StopLine{StopLine::Reason::kRedLight, 6.6};
+  EXPECT_EQ(PCollision(braking), p_free) << p_free;
+}
+
 TEST(StopObligation, PaperLiteralAndSwitchedOffIgnoreTheLine) {
   Scene red = CrossingScene(9.5);
   red.vehicles[0].stop_line = StopLine{StopLine::Reason::kRedLight, 9.5};
