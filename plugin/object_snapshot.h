@@ -22,6 +22,9 @@ struct ObjectSnapshot {
   /** A vehicle's own, left and right lanes seen from itself (counter-traffic flagged from its
    *  own direction of travel); empty for persons and where no usable lane exists. */
   LaneSet lanes;
+  /** A vehicle's obligation to stop ahead, as SUMO knows it (sumo_world.h): its next signal
+   *  is red or yellow, or its next link is a stop sign or yields to an approaching foe. */
+  std::optional<StopLine> stop_line;
   std::string lane;  ///< SUMO lane ID ("" when not on a lane)
   std::string edge;  ///< SUMO edge ID of that lane
 };

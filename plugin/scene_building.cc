@@ -43,6 +43,11 @@ std::string InvalidValues(const ObjectSnapshot& o) {
     return msg.str();
   }
   if (!LaneSetFinite(o.lanes)) return "lanes with non-finite points";
+  if (o.stop_line && !(o.stop_line->distance_m >= 0.0 && std::isfinite(o.stop_line->distance_m))) {
+    std::ostringstream msg;
+    msg << "stop_line.distance_m = " << o.stop_line->distance_m;
+    return msg.str();
+  }
   return "";
 }
 
@@ -81,6 +86,7 @@ Scene BuildScene(const ObjectSnapshot& ego, const std::vector<const ObjectSnapsh
       v.width_m = o->width_m;
       v.height_m = o->height_m;
       v.lanes = o->lanes;
+      v.stop_line = o->stop_line;
       scene.vehicles.push_back(std::move(v));
     }
   }

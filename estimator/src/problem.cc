@@ -1,6 +1,7 @@
 #include "src/problem.h"
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -275,12 +276,82 @@ void SetLongitudinalScores(const core::HypothesisSet& h, int reference, double s
   }
 }
 
+// A vehicle's stop obligation as the estimator uses it (Params::stop_obligations).
+struct StopObligation {
+  double distance_m{0.0};  ///< front bumper to the line
+};
+
+// The obligation of `v` when it counts: enabled, naturalistic scoring, and complying is
+// consistent with what the vehicle does (the deceleration it needs, v^2 / 2d, is comfortable,
+// or it already brakes at least half that hard).
+std::optional<StopObligation> CredibleStop(const Vehicle& v, const Params& p) {
+  if (!v.stop_line || !p.stop_obligations || !Naturalistic(p) || p.profiles < 4) return {};
+  const double d = v.stop_line->distance_m;
+  const double speed = v.state.speed_mps;
+  if (speed <= 0.0) return StopObligation{d};
+  const double needed = speed * speed / (2.0 * d);  // +inf at the line
+  if (needed <= p.stop_comfortable_decel_mps2 || -v.state.accel_mps2 >= 0.5 * needed) {
+    return StopObligation{d};
+  }
+  return {};
+}
+
+// Where a vehicle comes to rest (or how far it gets within `limit_s`) under a one-track profile
+// target: the same latency, ramp and non-reversing step as the motion models.
+double StopDistance(const core::HypothesisSet& h, double target, const Params& p) {
+  constexpr double kLimitS = 60.0;
+  const double tau = p.step_s;
+  double x = 0.0, v = h.v0;
+  for (double t = 0.0; t < kLimitS && v > 0.0; t += tau) {
+    double a = core::RampedValue(t, h.profile_start, target, h.latency, h.rate);
+    if (h.power_limited && a > 0.0) a = core::Min(a, core::DriveAccelLimit(h, v));
+    a = core::NonReversingAccel(v, a, tau);
+    x += v * tau + 0.5 * a * tau * tau;
+    v = core::Max(0.0, v + a * tau);
+  }
+  return x;
+}
+
+// Puts the stopping profile into `a` (one-track targets): the constant deceleration that stops
+// the front at the line (bisection on StopDistance, to 1e-4 m/s^2; a standing vehicle: the
+// comfortable deceleration, which holds it), in the slot nearest to it among those that are
+// neither the minimum, the maximum nor the reference. Returns its index, or -1 (the estimate is
+// then the one without a line) when the current acceleration already stops the vehicle before
+// the line (it complies as it is), when even the minimum overshoots the line (it cannot comply)
+// or when no slot is free.
+int StopProfile(const core::HypothesisSet& h, const StopObligation& stop, int reference,
+                const Params& p, std::vector<double>* a) {
+  const int n = static_cast<int>(a->size());
+  // Already stopping before the line at its current acceleration: that complies, and stays the
+  // reference (nothing to add).
+  if (reference >= 0 && StopDistance(h, (*a)[reference], p) <= stop.distance_m) return -1;
+  double lo = p.vehicle_accel_min_mps2, hi = 0.0;
+  if (StopDistance(h, lo, p) > stop.distance_m) return -1;
+  for (int i = 0; i < 60 && hi - lo > 1e-4; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (StopDistance(h, mid, p) > stop.distance_m ? hi : lo) = mid;
+  }
+  const double target = h.v0 > 0.0 ? lo : -p.stop_comfortable_decel_mps2;
+  int slot = -1;
+  for (int k = 1; k < n - 1; ++k) {
+    if (k == reference) continue;
+    if (slot < 0 || std::fabs((*a)[k] - target) < std::fabs((*a)[slot] - target)) slot = k;
+  }
+  if (slot >= 0) (*a)[slot] = target;
+  return slot;
+}
+
 // The longitudinal part of a vehicle's hypothesis set (the ego: two-track, driven by slip or
 // by tyre force demand; others: one-track accelerations) and its profile scores. `accel` gets
 // each profile's target acceleration and `slip` its slip (the ego's, for reports).
+// `a_ref` is the reference acceleration (ReferenceAccel). With `stop` (a credible stop
+// obligation, other vehicles only), one profile becomes the stopping profile and its index is
+// written to `stop_profile` (-1 when none fits: see StopProfile).
 std::vector<ProfileScore> SetVehicleProfiles(const Params& p, double a_ref, core::HypothesisSet* h,
                                              std::vector<double>* accel = nullptr,
-                                             std::vector<double>* slip = nullptr) {
+                                             std::vector<double>* slip = nullptr,
+                                             const StopObligation* stop = nullptr,
+                                             int* stop_profile = nullptr) {
   h->n_profiles = p.profiles;
   h->latency = p.latency_s;
   h->steer_latency = p.steer_latency_s;
@@ -328,6 +399,7 @@ std::vector<ProfileScore> SetVehicleProfiles(const Params& p, double a_ref, core
     } else {
       h->profile_start = h->accel0;
       h->rate = p.jerk_mps3;
+      if (stop) *stop_profile = StopProfile(*h, *stop, reference, p, &a);
       for (int k = 0; k < p.profiles; ++k) h->profile_target[k] = a[k];
     }
     const double range = p.accel_score_scale * std::fmax(std::fabs(p.vehicle_accel_min_mps2),
@@ -442,9 +514,28 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     if (!lanes.own) lanes.own = VirtualLane(v.state, params.virtual_lane_width_m);
     const FittedLanes fitted = FitLanes(lanes, where + ".lanes");
     const double a_ref = ReferenceAccel(v.state, params);
-    const std::vector<ProfileScore> profiles = SetVehicleProfiles(params, a_ref, &h);
+    const std::optional<StopObligation> stop = CredibleStop(v, params);
+    std::vector<double> accel;
+    int stop_profile = -1;
+    const std::vector<ProfileScore> profiles = SetVehicleProfiles(
+        params, a_ref, &h, &accel, nullptr, stop ? &*stop : nullptr, &stop_profile);
     const std::vector<PathScore> paths = SetPaths(fitted, params, /*combine=*/false, a_ref, &h);
     AppendProbabilities(profiles, paths, params, &pb.co_probability);
+    if (stop_profile >= 0) {
+      // A mixture: complying (every hypothesis scored against the stopping profile as the
+      // reference) with 1 - stop_violation_probability, driving on as without a line (the
+      // scores above) with stop_violation_probability.
+      std::vector<ProfileScore> complying(profiles.size());
+      for (size_t k = 0; k < complying.size(); ++k) {
+        complying[k].n_acc = AccelScore(params, accel[k] - accel[stop_profile]);
+      }
+      SetLongitudinalScores(h, stop_profile, 1.0, params, false, &complying);
+      std::vector<double> q;
+      AppendProbabilities(complying, paths, params, &q);
+      const double eps = params.stop_violation_probability;
+      double* mine = pb.co_probability.data() + pb.co_probability.size() - q.size();
+      for (size_t j = 0; j < q.size(); ++j) mine[j] = eps * mine[j] + (1.0 - eps) * q[j];
+    }
     info.first_trajectory = offset;
     info.trajectories = h.Trajectories();
     offset += info.trajectories;

@@ -40,6 +40,18 @@ void WriteLanes(std::ostream& out, const LaneSet& lanes) {
   one("right", lanes.right);
 }
 
+const char* StopReasonName(StopLine::Reason r) {
+  switch (r) {
+    case StopLine::Reason::kRedLight:
+      return "red";
+    case StopLine::Reason::kYellowLight:
+      return "yellow";
+    case StopLine::Reason::kYield:
+      return "yield";
+  }
+  return "?";
+}
+
 struct LineReader {
   std::vector<std::string> words;
   size_t next{0};
@@ -99,6 +111,10 @@ void WriteScene(std::ostream& out, const Scene& scene) {
     out << ' ' << (v.lanes ? 1 : 0) << '\n';
     WriteExpected(out, v.state);
     if (v.lanes) WriteLanes(out, *v.lanes);
+    if (v.stop_line) {
+      out << "stop " << StopReasonName(v.stop_line->reason) << ' ' << v.stop_line->distance_m
+          << '\n';
+    }
   }
   for (const Pedestrian& p : scene.pedestrians) {
     out << "pedestrian " << p.id;
@@ -111,6 +127,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
   Scene scene;
   LaneSet* lanes = nullptr;
   ObjectState* state = nullptr;  // of the last ego or vehicle, for 'expected-accel'
+  Vehicle* vehicle = nullptr;    // the last vehicle read, for its 'stop' line
   bool header = false, ego = false;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
@@ -137,6 +154,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       scene.ego.height_m = r.Height();
       lanes = &scene.ego.lanes;
       state = &scene.ego.state;
+      vehicle = nullptr;
       ego = true;
     } else if (kind == "vehicle") {
       Vehicle v;
@@ -150,6 +168,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       scene.vehicles.push_back(std::move(v));
       lanes = has_lanes ? &*scene.vehicles.back().lanes : nullptr;
       state = &scene.vehicles.back().state;
+      vehicle = &scene.vehicles.back();
     } else if (kind == "pedestrian") {
       Pedestrian p;
       p.id = r.Word();
@@ -159,9 +178,25 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       scene.pedestrians.push_back(std::move(p));
       lanes = nullptr;
       state = nullptr;
+      vehicle = nullptr;
     } else if (kind == "expected-accel") {
       if (!state) throw InputError(r.where + ": 'expected-accel' must follow an ego or a vehicle");
       state->expected_accel_mps2 = r.Num();
+    } else if (kind == "stop") {
+      if (!vehicle) throw InputError(r.where + ": 'stop' must follow a vehicle");
+      const std::string reason = r.Word();
+      StopLine stop;
+      if (reason == "red") {
+        stop.reason = StopLine::Reason::kRedLight;
+      } else if (reason == "yellow") {
+        stop.reason = StopLine::Reason::kYellowLight;
+      } else if (reason == "yield") {
+        stop.reason = StopLine::Reason::kYield;
+      } else {
+        throw InputError(r.where + ": stop reason '" + reason + "' must be red, yellow or yield");
+      }
+      stop.distance_m = r.Num();
+      vehicle->stop_line = stop;
     } else if (kind == "lane") {
       if (!lanes)
         throw InputError(r.where + ": 'lane' must follow an ego or a vehicle with LANES 1");
@@ -184,7 +219,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
         throw InputError(r.where + ": lane '" + which + "' must be own, left or right");
     } else {
       throw InputError(r.where + ": unknown record '" + kind +
-                       "' (ego, vehicle, pedestrian, lane, expected-accel)");
+                       "' (ego, vehicle, pedestrian, lane, stop, expected-accel)");
     }
     if (r.next != r.words.size()) throw InputError(r.where + ": too many values");
   }

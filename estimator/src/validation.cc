@@ -155,6 +155,10 @@ void ValidateParams(const Params& p) {
   RequireFinite("params.counter_traffic_penalty", p.counter_traffic_penalty);
   if (p.counter_traffic_penalty < 1.0)
     Fail("params.counter_traffic_penalty", p.counter_traffic_penalty, "must be >= 1");
+  RequireFinite("params.stop_violation_probability", p.stop_violation_probability);
+  if (p.stop_violation_probability < 0.0 || p.stop_violation_probability > 1.0)
+    Fail("params.stop_violation_probability", p.stop_violation_probability, "must be within 0..1");
+  RequirePositive("params.stop_comfortable_decel_mps2", p.stop_comfortable_decel_mps2);
   if (p.max_escape_routes < 0)
     Fail("params.max_escape_routes", p.max_escape_routes, "must be >= 0");
   if (p.max_memory_bytes == 0) Fail("params.max_memory_bytes", p.max_memory_bytes, "must be > 0");
@@ -174,6 +178,7 @@ Params ParamsPreset(const std::string& name) {
     p.w_acc = 1.0;
     p.w_str = 1.0;
     p.counter_traffic_penalty = 4.0;
+    p.stop_obligations = false;
     return p;
   }
   std::string names;
@@ -196,6 +201,11 @@ void ValidateScene(const Scene& scene, const Params& /*params*/) {
     ValidateState(where + ".state", scene.vehicles[i].state);
     ValidateSize(where, scene.vehicles[i].length_m, scene.vehicles[i].width_m,
                  scene.vehicles[i].height_m);
+    if (const auto& stop = scene.vehicles[i].stop_line) {
+      RequireFinite(where + ".stop_line.distance_m", stop->distance_m);
+      if (stop->distance_m < 0.0)
+        Fail(where + ".stop_line.distance_m", stop->distance_m, "must be >= 0");
+    }
   }
   for (size_t i = 0; i < scene.pedestrians.size(); ++i) {
     const std::string where = "scene.pedestrians[" + std::to_string(i) + "]";

@@ -43,6 +43,9 @@ inline Scene RandomScene(unsigned seed, int max_vehicles, int max_pedestrians, b
     } else if (kind == 2) {
       v.state.yaw_rad = uni(1.2, 1.9);  // crossing: virtual lane
     }
+    // Every other vehicle must stop at a line ahead (red light, yield), drawn without the
+    // random stream so that the rest of the scene stays as it was.
+    if (i % 2 == 1) v.stop_line = StopLine{StopLine::Reason::kRedLight, 2.0 + 4.0 * i};
     s.vehicles.push_back(v);
   }
   const int n_ped = static_cast<int>(rng() % (max_pedestrians + 1));

@@ -152,6 +152,31 @@ struct Params {
    *  scores. Project choice; paper-literal: false. */
   bool expected_accel_reference{true};
 
+  // --- Stop obligations (Vehicle::stop_line; the paper is silent: estimator/ALGORITHM.md) ---
+  /** With true, a vehicle with a credible obligation to stop (below) gets a stopping profile:
+   *  the constant deceleration, reached through latency_s and jerk_mps3 like every profile,
+   *  that stops its front at the line. Its hypotheses are then a mixture: with probability
+   *  1 - stop_violation_probability the vehicle complies (every hypothesis scored against the
+   *  stopping profile as the reference), with stop_violation_probability it drives as if there
+   *  were no line (scored against its current acceleration, as without an obligation).
+   *  Needs kNaturalistic scoring and at least 4 profiles; paper-literal: false. */
+  bool stop_obligations{true};
+  /** The share of drivers who do not stop where they must. Red-light running, measured on
+   *  vehicle trajectories at nine signalised sites: 0.9-2.0 % of the vehicles near the stop line
+   *  at the onset of yellow entered on red (a US DOT-funded dilemma-zone study, table 6.4, as
+   *  quoted at
+   * https://1library.co/article/apertura-evaluaci%C3%B3n-ofertas-documento-licitaci%C3%B3n.zlg3mn7g;
+   *  Hunter's Rhode Island study counts 1.2-15 violations per intersection-hour). Project
+   *  choice: 0.02, the upper end, also for yield lines (no comparable data found). */
+  double stop_violation_probability{0.02};
+  /** An obligation counts only while complying is consistent with what the vehicle does: the
+   *  deceleration it needs to stop at the line, v^2 / (2 d), is comfortable (at most this), or
+   *  it already brakes at least half that hard. A driver who needs more and does not brake is
+   *  not going to stop (an inattentive one, or one past the point of no return at yellow): then
+   *  its hypotheses are those without a line. AASHTO (2011): 3.4 m/s^2 is comfortable for most
+   *  drivers (the same source as decel_score_sigma_mps2). */
+  double stop_comfortable_decel_mps2{3.4};
+
   // --- Scoring (paper Sec. IV-D-1): n_h = (w_acc n_acc + w_str d_str) / (c_com c_cou) ---
   /** Which functions fill the paper's formula. kNaturalistic (default): Gaussian deviation
    *  scores with widths from naturalistic driving data, d_str scoring the hypothesis' position

@@ -74,6 +74,19 @@ struct Ego {
   LaneSet lanes;                   ///< in the ego's local frame
 };
 
+/** A line ahead of a vehicle at which the traffic rules oblige it to stop, as the traffic
+ *  simulation (or a map and a signal detector) knows it. */
+struct StopLine {
+  enum class Reason {
+    kRedLight,     ///< its next signal shows red (or red-yellow)
+    kYellowLight,  ///< its next signal shows yellow
+    kYield,        ///< a stop sign, or a yield line with a conflicting vehicle approaching
+  };
+  Reason reason{Reason::kRedLight};
+  /** Distance along its path from its front bumper to the line, >= 0. */
+  double distance_m{0.0};
+};
+
 /** Another vehicle (a collision object, CO). Simulated with the one-track model. */
 struct Vehicle {
   std::string id;
@@ -86,6 +99,9 @@ struct Vehicle {
    *  one of the ego's lanes and uses the ego's lanes seen from its own frame (paper Sec. IV-A);
    *  outside every ego lane it gets a virtual lane along its heading. */
   std::optional<LaneSet> lanes;
+  /** Where it must stop, when it must (estimator/ALGORITHM.md, "Stop obligations"): its
+   *  hypotheses then include braking to stop before the line as the most probable one. */
+  std::optional<StopLine> stop_line;
 };
 
 /** A pedestrian (kinematic model, no lanes). SUMO's default person is 0.215 m x 0.478 m; a
