@@ -171,6 +171,9 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
     return;
   }
   if (d == AvoidanceDecision::kRelease) {
+    // An engagement in which SUMO's own speed stayed the lower and nothing was steered did
+    // nothing to release: no row.
+    const bool acted = s->commanding || s->steered;
     ActionEvent a = row("release", nullptr);
     a.detail = "control handed back";
     if (s->commanding) {
@@ -188,7 +191,7 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
       }
     }
     if (s->steer_pending) a.detail += "; the pending lane change dropped";
-    out->actions.push_back(a);
+    if (acted) out->actions.push_back(a);
     s->braking = s->steer_pending = s->steered = false;
     s->previous_accel = 0.0;
     return;
