@@ -3,7 +3,7 @@
 # city-like run through criticality-campaign (ours with SUMO's SSM device, the closed loop, the
 # ablations the driver offers) and writes eval/ (tables, figures, index.html).
 # Usage: tools/evaluate.sh [--out DIR] [--full] [--only a,b] [-j N] ...   (--help: every option)
-# Without --full the city-like run covers its first 300 s; tools/evaluate/README.md says more.
+# Without --full the city-like run covers its first 120 s; tools/evaluate/README.md says more.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Debian's Python has Debian's matplotlib (python3-matplotlib, installed by setup.sh); another

@@ -2,7 +2,7 @@
 # Re-records, in one command, everything that holds the estimator's outcome (after a change that
 # is meant to change it, e.g. the closed loop or the false-alarm work):
 #   1. tests/scenarios/recorded_warnings.txt, the regression tests' values, from every scenario
-#      of scenarios/ (the city-like run over its first 300 s included), default driver options;
+#      of scenarios/ (the city-like run over its first 120 s included), default driver options;
 #   2. the evaluation, tools/evaluate.sh with the arguments given here (default: everything),
 #      into eval/ (or --out DIR);
 #   3. OUT/RESULTS_section.md: a bench/RESULTS.md section (machine, date, commit, command, the
