@@ -93,7 +93,7 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
       }
       world_->Publish(ego.id, p, s.warning);
     }
-    if (o.act == Act::kBrake) Avoid(obs.time_s, ego, r, p, &s, &out);
+    if (o.act == Act::kBrake) Avoid(obs.time_s, ego, batch.scenes[k], r, p, &s, &out);
     EgoStep step;
     step.ego = &ego;
     step.p_collision = r.p_collision;
@@ -137,8 +137,8 @@ bool ActStage::HandBack(const std::string& ego, const VehicleControl& c, double 
   return true;
 }
 
-void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, double p, EgoState* s,
-                     ActOutcome* out) {
+void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Scene& scene, const Result& r,
+                     double p, EgoState* s, ActOutcome* out) {
   const double v = ego.state.speed_mps;
   if (!s->policy.engaged() && !s->handing_back && p < policy_config_.engage_threshold) return;
   const VehicleControl c = world_->ReadControl(ego.id);
@@ -202,6 +202,10 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
     s->steered = s->steer_pending = false;
   }
   const double elapsed = t - s->policy.engaged_since_s();
+  // A threat from behind (the object contributing most is behind the ego): braking of ours
+  // would only raise its closing speed, so SUMO keeps the speed, and a lane change out of its
+  // way starts at once instead of when the route crosses the boundary.
+  const bool threat_behind = MainThreatBehind(scene, r);
   // The route: the best ranked one that can be executed; a lane change is decided once per
   // engagement (no lateral back and forth) and needs a lane of the same edge to go to.
   const LaneChanging lc = world_->LaneChangingModel();
@@ -233,7 +237,7 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
       // SUMO moves a changing vehicle over lanechange.duration (0: in one step): start so that
       // it crosses into the target lane when the route does.
       s->steer_pending = true;
-      s->steer_at_s = t + std::max(0.0, plan.cross_s - 0.5 * lc.duration_s);
+      s->steer_at_s = threat_behind ? t : t + std::max(0.0, plan.cross_s - 0.5 * lc.duration_s);
       s->steer_lane = target;
       s->steer_hold_s = route->time_s.empty() ? 1.0 : route->time_s.back();
       a.lane_after = c.lane.substr(0, c.lane.rfind('_')) + "_" + std::to_string(target);
@@ -242,6 +246,7 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
                     "%.1f s (lanechange.duration); ",
                     plan.cross_s, plan.duration_s, lc.duration_s);
       a.detail = b + lcm;
+      if (threat_behind) a.detail += "; the main threat comes from behind: at once, no braking";
       s->steer_row = a;
     }
   }
@@ -252,7 +257,8 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
     out->actions.push_back(s->steer_row);
   }
   // Mitigation: when even the followed route probably collides, the lowest impact speed is
-  // what is left to reach: brake as hard as the type allows.
+  // what is left to reach: brake as hard as the type allows; not when the main threat comes
+  // from behind (braking would only raise its closing speed).
   const bool mitigate = route && route->collision_probability >= kMitigation;
   SpeedInputs in;
   in.speed_mps = v;
@@ -262,7 +268,7 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
   in.elapsed_s = elapsed;
   in.previous_accel_mps2 = s->previous_accel;
   in.active = s->braking;
-  const SpeedCommand cmd = ClosedLoopSpeed(in, brake_model_, dt_);
+  const SpeedCommand cmd = threat_behind ? SpeedCommand{} : ClosedLoopSpeed(in, brake_model_, dt_);
   if (cmd.command) {
     world_->CommandSpeed(ego.id, cmd.speed_mps);
     s->previous_accel = cmd.accel_mps2;
@@ -273,6 +279,9 @@ void ActStage::Avoid(double t, const ObjectSnapshot& ego, const Result& r, doubl
       a.detail = SpeedModeText(c.speed_mode);
       if (!route) a.detail += "; no escape route to follow: emergencyDecel";
       if (mitigate) a.detail += "; the route probably collides: emergencyDecel (mitigation)";
+      if (threat_behind)
+        a.detail +=
+            "; the route probably collides, from behind: its own deceleration, no mitigation";
       if (c.forced)
         a.detail += "; the scenario forces " + Fixed(c.own_speed_mps).substr(1) + " m/s";
       out->actions.push_back(a);

@@ -98,8 +98,8 @@ class ActStage {
   };
   EgoState& StateOf(const std::string& ego);
   /** The closed loop for one ego at time t (--act brake). */
-  void Avoid(double t, const ObjectSnapshot& ego, const Result& r, double p, EgoState* s,
-             ActOutcome* out);
+  void Avoid(double t, const ObjectSnapshot& ego, const Scene& scene, const Result& r, double p,
+             EgoState* s, ActOutcome* out);
   /** Gives the speed back to SUMO; where SUMO's own choice is a speed the scenario forces
    *  above what the type's accel reaches in one step (speed mode 0 would jump to it), commands
    *  that step of the ramp instead and returns false. */

@@ -5,6 +5,26 @@
 
 namespace criticality::plugin {
 
+bool MainThreatBehind(const Scene& scene, const Result& result) {
+  const ObjectResult* main = nullptr;
+  for (const ObjectResult& o : result.objects) {
+    if (o.contribution > 0.0 && (!main || o.contribution > main->contribution)) main = &o;
+  }
+  if (!main) return false;
+  const ObjectState* state = nullptr;
+  for (const Vehicle& v : scene.vehicles) {
+    if (v.id == main->id) state = &v.state;
+  }
+  for (const Pedestrian& ped : scene.pedestrians) {
+    if (ped.id == main->id) state = &ped.state;
+  }
+  if (!state) return false;
+  const ObjectState& e = scene.ego.state;
+  const double ahead =
+      (state->x_m - e.x_m) * std::cos(e.yaw_rad) + (state->y_m - e.y_m) * std::sin(e.yaw_rad);
+  return ahead < 0.0;
+}
+
 LateralPlan LateralPlanOf(const EscapeRoute& r, double lane_width_m) {
   LateralPlan plan;
   for (int lane : r.target_lanes) {

@@ -145,3 +145,40 @@ TEST(ChooseRoute, TheBestRankedUnlessItSteersAndSteeringIsOff) {
 
 }  // namespace
 }  // namespace criticality::plugin
+
+namespace criticality::plugin {
+namespace {
+
+TEST(MainThreatBehind, TheLargestContributorDecides) {
+  Scene scene;
+  scene.ego.state.yaw_rad = 1.5707963267948966;  // heading +y
+  Vehicle behind, ahead;
+  behind.id = "behind";
+  behind.state.y_m = -20.0;
+  ahead.id = "ahead";
+  ahead.state.y_m = 30.0;
+  scene.vehicles = {behind, ahead};
+  Result r;
+  r.objects.resize(2);
+  r.objects[0].id = "behind";
+  r.objects[1].id = "ahead";
+  EXPECT_FALSE(MainThreatBehind(scene, r));  // nobody contributes
+  r.objects[0].contribution = 0.6;
+  r.objects[1].contribution = 0.3;
+  EXPECT_TRUE(MainThreatBehind(scene, r));
+  r.objects[1].contribution = 0.7;
+  EXPECT_FALSE(MainThreatBehind(scene, r));
+  // Pedestrians count too; behind along the heading, whatever the side.
+  Pedestrian p;
+  p.id = "walker";
+  p.state.x_m = 5.0;
+  p.state.y_m = -1.0;
+  scene.pedestrians = {p};
+  r.objects.push_back(ObjectResult{});
+  r.objects.back().id = "walker";
+  r.objects.back().contribution = 0.9;
+  EXPECT_TRUE(MainThreatBehind(scene, r));
+}
+
+}  // namespace
+}  // namespace criticality::plugin

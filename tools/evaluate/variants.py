@@ -30,6 +30,9 @@ VARIANTS = [
             {"act": "warn", "no-lateral-controller": "true"}),
     Variant("no-road-model", "the paper's ablation: no road model (virtual lanes only)",
             {"act": "warn", "no-road-model": "true"}),
+    Variant("no-car-following",
+            "ours without the car-following reference (the paper's: keep the current acceleration)",
+            {"act": "warn", "no-car-following": "true"}),
     Variant("paper-literal", "the first implementation's scoring (ParamsPreset paper-literal)",
             {"act": "warn", "preset": "paper-literal"}),
 ]
