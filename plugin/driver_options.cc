@@ -244,6 +244,11 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
     } catch (const po::unknown_option& e) {
       std::string name = e.get_option_name();
       while (!name.empty() && name[0] == '-') name.erase(0, 1);
+      if (name == "configuration-file" || name == "sumocfg" || name == "sumo-cfg") {
+        throw std::invalid_argument("unrecognised option '--" + name +
+                                    "': the SUMO configuration is given with -c FILE "
+                                    "(--sumo-config FILE)");
+      }
       if (SumoKnowsOption(name)) {
         throw std::invalid_argument("unrecognised option '--" + name +
                                     "': it is a SUMO option; give SUMO's options after '--', "

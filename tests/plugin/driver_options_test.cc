@@ -61,8 +61,16 @@ TEST(DriverOptions, CommandLine) {
   EXPECT_EQ(o.options.sumo_args, (std::vector<std::string>{"--seed", "7"}));
   EXPECT_DOUBLE_EQ(o.options.warn_release, 0.8 * o.options.warn_threshold);
   EXPECT_DOUBLE_EQ(o.options.warn_release_after_s, 0.3);
-  const ParseOutcome z = Parse({"-c", cfg.c_str(), "--ego", "a", "--output", "x.sqlite",
-                                "--warn-release-after", "0"});
+  for (const char* alias : {"--sumocfg", "--configuration-file"}) {
+    try {
+      Parse({alias, cfg.c_str(), "--ego", "a", "--output", "x.sqlite"});
+      ADD_FAILURE() << alias << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("-c FILE"), std::string::npos) << e.what();
+    }
+  }
+  const ParseOutcome z =
+      Parse({"-c", cfg.c_str(), "--ego", "a", "--output", "x.sqlite", "--warn-release-after", "0"});
   EXPECT_DOUBLE_EQ(z.options.warn_release_after_s, 0.0);
   try {
     Parse({"-c", cfg.c_str(), "--ego", "a", "--output", "x.sqlite", "--warn-release-after", "-1"});

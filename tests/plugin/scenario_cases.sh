@@ -515,14 +515,21 @@ if ours != theirs: print('ours  ', ours[:10]); print('theirs', theirs[:10])
 sys.exit(0 if ours == theirs else 1)
 PY
     # Memory flat in simulated time: the resident memory of the second half of the run stays
-    # within 15 MB of the first half's.
+    # within 15 MB of the first half's, plus 0.3 MB per ego estimated at once beyond the first
+    # half's most (the fleet run's traffic builds up over its 120 s, from about 100 to 200 egos
+    # per step, and SUMO and the estimators hold more for more vehicles: measured 99 -> 129 MB,
+    # at the same size at the end whether the step up fell into the first half or not).
     check "city ($case): memory flat" python3 - "$db" <<'PY'
 import sqlite3, sys
-rows = sqlite3.connect(sys.argv[1]).execute("select time_s, rss_mb from step_times order by time_s").fetchall()
+rows = sqlite3.connect(sys.argv[1]).execute(
+    "select time_s, rss_mb, estimates from step_times order by time_s").fetchall()
 half = len(rows) // 2
 first = max(r[1] for r in rows[len(rows) // 10:half]); second = max(r[1] for r in rows[half:])
-print(f'resident memory: first half up to {first:.1f} MB, second half up to {second:.1f} MB')
-sys.exit(0 if second <= first + 15.0 else 1)
+more_egos = max(0, max(r[2] for r in rows[half:]) - max(r[2] for r in rows[:half]))
+allowed = first + 15.0 + 0.3 * more_egos
+print(f'resident memory: first half up to {first:.1f} MB, second half up to {second:.1f} MB '
+      f'(allowed {allowed:.1f}: {more_egos} more egos per step)')
+sys.exit(0 if second <= allowed else 1)
 PY
     ;;
   *) echo "unknown case $case"; exit 2 ;;
