@@ -282,7 +282,9 @@ PY
       test "$(q "$db" "select group_concat(collider || '>' || victim || ':' || involves_ego) from collisions")" = "ego>obstacle:0"
     ;;
   reader)
-    # A reader polling the database every 0.1 s while the run goes on never breaks it.
+    # A reader polling the database every 0.1 s while the run goes on never breaks it. The reader
+    # gives SQLite a busy timeout, as plugin/README.md tells readers to: without one, a read at the
+    # moment the run closes the file (the WAL folded into it) is told "database is locked".
     db=$work/read.sqlite; rm -f "$db"*
     "$driver" --config "$scenarios/motorway_dense_free/scenario.cfg" --output "$db" --no-progress \
       > "$work/read.out" 2>&1 &
@@ -290,7 +292,8 @@ PY
     reads=0 failures=0
     while kill -0 $pid 2>/dev/null; do
       if [ -e "$db" ]; then
-        if out=$(sqlite3 "$db" "select count(*) from steps" 2>&1) && [[ $out =~ ^[0-9]+$ ]]; then
+        if out=$(sqlite3 -cmd ".timeout 1000" "$db" "select count(*) from steps" 2>&1) &&
+           [[ $out =~ ^[0-9]+$ ]]; then
           reads=$((reads + 1))
         elif [ $reads -gt 0 ]; then
           failures=$((failures + 1)); echo "   reader: $out"
