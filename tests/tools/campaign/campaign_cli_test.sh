@@ -4,22 +4,12 @@
 # campaign then resume, failures, merge, report, and the Slurm script.
 # Usage: campaign_cli_test.sh CRITICALITY_CAMPAIGN STAND_IN_DRIVER WORK_DIR
 set -uo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
 tool=$1 driver=$2 work=$3
 rm -rf "$work" && mkdir -p "$work/a" "$work/b" && cd "$work" || exit 1
 echo "sumo-config = x.sumocfg" >a/scenario.cfg
 echo "sumo-config = x.sumocfg" >b/scenario.cfg
-failures=0
-fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
-check() { "$@" || fail "$*"; }
-# Whether a process works in a folder under $1 (a run's folder; no procps needed).
-running_in() {
-  local d c
-  for d in /proc/[0-9]*; do
-    c=$(readlink "$d/cwd" 2>/dev/null) || continue
-    case "$c" in "$1"*) return 0 ;; esac
-  done
-  return 1
-}
+. "$here/test_helpers.sh"  # failures, fail, check, running_in
 json_field() { sed -n "s/.*\"$1\":\([^,}]*\).*/\1/p" <<<"$2" | tail -n 1; }
 export SUMO_CRITICALITY_DRIVER=$driver
 

@@ -4,20 +4,10 @@
 # exactly once and the killed runs' half-written files never are.
 # Usage: campaign_sumo_test.sh CRITICALITY_CAMPAIGN SUMO_CRITICALITY SCENARIOS_DIR WORK_DIR
 set -uo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
 tool=$1 driver=$2 scenarios=$3 work=$4
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-failures=0
-fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
-check() { "$@" || fail "$*"; }
-# Whether a process works in a folder under $1 (a run's folder; no procps needed).
-running_in() {
-  local d c
-  for d in /proc/[0-9]*; do
-    c=$(readlink "$d/cwd" 2>/dev/null) || continue
-    case "$c" in "$1"*) return 0 ;; esac
-  done
-  return 1
-}
+. "$here/test_helpers.sh"  # failures, fail, check, running_in
 q() { sqlite3 out/campaign.sqlite "$1"; }
 
 cat >c.yaml <<YAML
