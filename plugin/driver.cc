@@ -166,6 +166,7 @@ class CoSimulation {
     cfg.horizon_s = o_.params.horizon_s;
     cfg.max_accel_mps2 = o_.params.vehicle_accel_max_mps2;
     cfg.whole_network = o_.all_vehicles;
+    cfg.lane_sampling = LaneSamplingFor(o_.params);
     observe_ = std::make_unique<ObserveStage>(o_, world_.get(), cfg);
     scenes_ = std::make_unique<SceneStage>(o_);
     estimate_ = std::make_unique<EstimateStage>(o_);

@@ -32,21 +32,36 @@ Point2 PointAlong(const std::vector<Point2>& line, double s, double* heading) {
   return Point2{a.x + ux * t, a.y + uy * t};
 }
 
-double SampledReach(const LaneCorridor& c, double reach_m, double yaw) {
+LaneSampling LaneSamplingFor(const Params& params) {
+  LaneSampling s;
+  s.turn_lane_frame = params.turn_lane_frame && params.road_model;
+  s.turn_lane_frame_min_rad = params.turn_lane_frame_min_rad;
+  return s;
+}
+
+double SampledReach(const LaneCorridor& c, double reach_m, double yaw, bool turn_lane_frame) {
   constexpr double kStep = 0.5;  // m
+  double final_heading = 0.0;
+  PointAlong(c.centre, c.position_m + reach_m, &final_heading);
+  const bool to_turn_end =
+      turn_lane_frame && std::fabs(core::WrapAngle(final_heading - yaw)) > kPaperFrameMaxTurnRad;
+  const double max_turn = turn_lane_frame ? kTurnFrameMaxTurnRad : kPaperFrameMaxTurnRad;
   for (double d = kStep; d < reach_m; d += kStep) {
     double heading = 0.0;
     PointAlong(c.centre, c.position_m + d, &heading);
-    if (std::fabs(core::WrapAngle(heading - yaw)) > kMaxSampledTurnRad) {
+    if (std::fabs(core::WrapAngle(heading - yaw)) > max_turn) {
       return std::fmax(d - kStep, kMinSampledReachM);
     }
+    if (to_turn_end && std::fabs(core::WrapAngle(heading - final_heading)) < kTurnEndToleranceRad)
+      return std::fmin(std::fmax(d, kMinSampledReachM), reach_m);
   }
   return reach_m;
 }
 
-LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const core::Pose2& X_WV) {
+LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const core::Pose2& X_WV,
+                      const LaneSampling& sampling) {
   if (c.centre.size() < 2 || !(reach_m > 0.0)) return LaneSet{};
-  reach_m = SampledReach(c, reach_m, X_WV.yaw);
+  reach_m = SampledReach(c, reach_m, X_WV.yaw, sampling.turn_lane_frame);
   const double s[3] = {c.position_m, c.position_m + 0.5 * reach_m, c.position_m + reach_m};
   // Each divider is the centre line shifted left by `offset` (negative: right).
   auto divider = [&](double offset) {
@@ -70,16 +85,26 @@ LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const core::Pose2& 
   // left divider left of the right one. Offsetting a tight turn's centre line can break that
   // (the dividers cross): such a neighbour is left out; such an own lane makes the whole set
   // unusable, and the estimator then uses a virtual lane.
-  auto usable = [](const std::optional<Lane>& lane) {
+  // Checked in the frame the estimator will fit them in (turned along a junction turn's chord).
+  Params frame_params;
+  frame_params.turn_lane_frame = sampling.turn_lane_frame;
+  frame_params.turn_lane_frame_min_rad = sampling.turn_lane_frame_min_rad;
+  const double frame = LaneFrameAngle(set, frame_params);
+  const double cf = std::cos(frame), sf = std::sin(frame);
+  auto usable = [&](const std::optional<Lane>& lane) {
+    auto xr = [&](const Point2& p) { return cf * p.x + sf * p.y; };
+    auto yr = [&](const Point2& p) { return -sf * p.x + cf * p.y; };
     for (const LaneDivider* d : {&lane->left, &lane->right}) {
-      if (!(d->points[1].x > d->points[0].x + 0.5 && d->points[2].x > d->points[1].x + 0.5)) {
+      if (!(xr(d->points[1]) > xr(d->points[0]) + 0.5 &&
+            xr(d->points[2]) > xr(d->points[1]) + 0.5)) {
         return false;
       }
     }
     for (int i = 0; i < 3; ++i) {
-      if (!(lane->left.points[i].y > lane->right.points[i].y + 0.1)) return false;
+      if (!(yr(lane->left.points[i]) > yr(lane->right.points[i]) + 0.1)) return false;
     }
-    return LaneProblem(*lane).empty();  // the estimator's own test (fit, width at the observer)
+    // The estimator's own test (fit, width at the observer).
+    return LaneProblem(*lane, frame).empty();
   };
   if (!usable(set.own)) return LaneSet{};
   if (set.left && !usable(set.left)) set.left.reset();

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/geometry.h"
+#include "criticality/params.h"
 #include "criticality/scene.h"
 
 namespace criticality::plugin {
@@ -33,25 +34,43 @@ double PolylineLength(const std::vector<Point2>& line);
  *  direction of travel there (math yaw). */
 Point2 PointAlong(const std::vector<Point2>& line, double s, double* heading);
 
-/** The paper's lane model is a parabola y(x) in the vehicle's frame, fitted to three samples:
- *  it cannot follow a road that turns across the vehicle's heading. Fitted through a sample
- *  beyond a junction's 90 degree turn, it bent the other way first and swept through the cars
- *  waiting beside the turn (one-step false alarms of p ~ 1 in the city run). The samples stop
- *  where the centre line has turned more than this from the vehicle's heading: the parabola
- *  then follows the turn as far as it goes, and curves on with it beyond. */
-constexpr double kMaxSampledTurnRad = 1.0471975511965976;  // 60 degrees
+/** How far into a turn the samples go: the paper's parabola y(x) in the vehicle's frame cannot
+ *  follow a road that turns across the heading. Fitted through a sample beyond a junction's
+ *  90 degree turn it bent the other way first and swept through the cars waiting beside the
+ *  turn, so in the paper's frame the samples stop where the centre line has turned
+ *  kPaperFrameMaxTurnRad from the vehicle's heading, and the parabola curves on beyond. In the
+ *  estimator's turn frame (Params::turn_lane_frame: a lane fitted along its chord, continuing
+ *  straight beyond its last sample) a turn of more than kPaperFrameMaxTurnRad ahead is sampled
+ *  to its end instead (where the heading comes within kTurnEndToleranceRad of the heading at
+ *  the full reach), so that the lane leaves the turn along the road that follows. */
+struct LaneSampling {
+  bool turn_lane_frame{true};
+  /** The estimator's Params::turn_lane_frame_min_rad, so that the samples are checked in the
+   *  frame it will fit them in. */
+  double turn_lane_frame_min_rad{0.35};
+};
+constexpr double kPaperFrameMaxTurnRad = 1.0471975511965976;  // 60 degrees
+constexpr double kTurnEndToleranceRad = 0.05235987755982989;  // 3 degrees
+/** In the turn frame, the samples still stop where the centre line has turned this far
+ *  (beyond it, e.g. in a U-turn, no chord makes the lane a function y(x)). */
+constexpr double kTurnFrameMaxTurnRad = 2.0943951023931957;  // 120 degrees
 /** ... but never closer than this (a vehicle standing across its lane keeps a usable reach). */
 constexpr double kMinSampledReachM = 5.0;
 
+/** The sampling for the estimator's parameters. */
+LaneSampling LaneSamplingFor(const Params& params);
+
 /** The reach the samples use: `reach_m`, or less where the centre line ahead of position turns
- *  more than kMaxSampledTurnRad away from `yaw` (at least kMinSampledReachM). */
-double SampledReach(const LaneCorridor& corridor, double reach_m, double yaw);
+ *  away from `yaw`, as LaneSampling says (at least kMinSampledReachM). */
+double SampledReach(const LaneCorridor& corridor, double reach_m, double yaw,
+                    bool turn_lane_frame = false);
 
 /** Samples the corridor at s = position, position + reach/2, position + reach (reach as
- *  SampledReach shortens it) and returns the
- *  lanes in the vehicle's local frame X_WV. Returns an empty LaneSet (the estimator then uses a
- *  virtual lane) when the corridor has fewer than 2 points or its samples do not run forward
- *  in the vehicle's frame (e.g. the vehicle stands across its lane). */
-LaneSet SampleLaneSet(const LaneCorridor& corridor, double reach_m, const core::Pose2& X_WV);
+ *  SampledReach shortens it) and returns the lanes in the vehicle's local frame X_WV. Returns
+ *  an empty LaneSet (the estimator then uses a virtual lane) when the corridor has fewer than
+ *  2 points or its samples do not run forward along the frame the estimator fits them in
+ *  (e.g. the vehicle stands across its lane). */
+LaneSet SampleLaneSet(const LaneCorridor& corridor, double reach_m, const core::Pose2& X_WV,
+                      const LaneSampling& sampling = LaneSampling{});
 
 }  // namespace criticality::plugin

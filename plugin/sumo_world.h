@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "criticality/scene.h"
+#include "plugin/lane_corridor.h"
 #include "plugin/object_snapshot.h"
 #include "plugin/scenario_event.h"
 
@@ -79,6 +80,8 @@ struct ExtractionConfig {
   /** Every vehicle is an ego (--all-vehicles): read the whole network with one subscription
    *  per object and find neighbours here, instead of one context subscription per ego. */
   bool whole_network{false};
+  /** How far lanes are sampled into a turn (LaneSamplingFor the estimator's parameters). */
+  LaneSampling lane_sampling{};
 };
 
 class SumoWorld {

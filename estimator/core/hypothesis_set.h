@@ -54,6 +54,9 @@ struct HypothesisSet {
    *  after it (Params::steer_latency_s). */
   double steer_latency{0.0};
   Parabola reference_path;
+  /** The lateral controller adds the curvature of the path it tracks (feed-forward,
+   *  Params::steer_curvature_feedforward): set for a vehicle already turning along its lane. */
+  bool steer_feedforward{false};
 
   // Lateral: section[k][l] is the path section through lateral sample l (right to left) that
   // is tracked until instant_time[k].

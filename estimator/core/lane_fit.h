@@ -8,19 +8,80 @@
 
 namespace criticality::core {
 
-/** y(x) = a x^2 + b x + c in an object's local frame. */
+/** y(x) = a x^2 + b x + c in an object's local frame, or, for a lane that turns far across
+ *  the object's heading (Params::turn_lane_frame), in that frame rotated by `rot` (x along the
+ *  lane's chord), continued along its tangent beyond x_end. With the defaults (rot = 0,
+ *  x_end = +inf) it is the paper's parabola in the local frame. */
 struct Parabola {
   double a{0.0};
   double b{0.0};
   double c{0.0};
-  CRIT_HD double Eval(double x) const { return (a * x + b) * x + c; }
-  CRIT_HD double Slope(double x) const { return 2.0 * a * x + b; }
+  double rot{0.0};      ///< angle of the parabola's frame in the local frame (rad)
+  double cos_rot{1.0};  ///< cos(rot)
+  double sin_rot{0.0};  ///< sin(rot)
+  /** Beyond this x (in the parabola's frame) the curve continues straight along its tangent
+   *  there: a lane sampled to the end of a turn leaves it straight instead of turning on. */
+  double x_end{HUGE_VAL};
+  /** y and dy/dx at x, both in the parabola's frame. */
+  CRIT_HD double Eval(double x) const {
+    if (x > x_end) return (a * x_end + b) * x_end + c + (2.0 * a * x_end + b) * (x - x_end);
+    return (a * x + b) * x + c;
+  }
+  CRIT_HD double Slope(double x) const { return 2.0 * a * (x < x_end ? x : x_end) + b; }
+  /** A point of the local frame in the parabola's frame. */
+  CRIT_HD void ToFrame(double x, double y, double* xr, double* yr) const {
+    *xr = cos_rot * x + sin_rot * y;
+    *yr = -sin_rot * x + cos_rot * y;
+  }
+  /** The curve's point at xr (parabola's frame), in the local frame. */
+  CRIT_HD void PointAt(double xr, double* x, double* y) const {
+    const double yr = Eval(xr);
+    *x = cos_rot * xr - sin_rot * yr;
+    *y = sin_rot * xr + cos_rot * yr;
+  }
+  /** Curve minus point along the parabola frame's y axis, for a point of the local frame
+   *  (positive: the curve lies to the left of the point as the frame sees it). */
+  CRIT_HD double OffsetFrom(double x, double y) const {
+    double xr, yr;
+    ToFrame(x, y, &xr, &yr);
+    return Eval(xr) - yr;
+  }
+  /** Direction of the curve at xr (parabola's frame), as an angle in the local frame. */
+  CRIT_HD double Direction(double xr) const { return std::atan(Slope(xr)) + rot; }
+  /** The same curve written in a frame rotated by r (its coefficients unchanged). */
+  CRIT_HD void SetFrame(double r) {
+    rot = r;
+    cos_rot = std::cos(r);
+    sin_rot = std::sin(r);
+  }
 };
 
 /** Pointwise blend (1 - f) * p + f * q: the curve "parallel" to two dividers that passes at
- *  fraction f across the lane they delimit (used for path sections, paper Sec. IV-B-2b). */
+ *  fraction f across the lane they delimit (used for path sections, paper Sec. IV-B-2b). Both
+ *  must be written in the same frame; the blend keeps p's frame and x_end. */
 CRIT_HD Parabola Blend(const Parabola& p, const Parabola& q, double f) {
-  return Parabola{(1.0 - f) * p.a + f * q.a, (1.0 - f) * p.b + f * q.b, (1.0 - f) * p.c + f * q.c};
+  Parabola out = p;
+  out.a = (1.0 - f) * p.a + f * q.a;
+  out.b = (1.0 - f) * p.b + f * q.b;
+  out.c = (1.0 - f) * p.c + f * q.c;
+  return out;
+}
+
+/** The x (parabola's frame) reached after arc length s along the curve from x0. In the
+ *  paper's frame (rot = 0) a distance along the road is taken as a distance along x, as the
+ *  paper does; in a rotated frame the arc is integrated (16 midpoint steps). */
+CRIT_HD double XAfterArc(const Parabola& p, double x0, double s) {
+  if (p.rot == 0.0) return x0 + s;
+  const int n = 16;
+  const double ds = s / n;
+  double x = x0;
+  for (int i = 0; i < n; ++i) {
+    const double m1 = p.Slope(x);
+    const double xm = x + 0.5 * ds / std::sqrt(1.0 + m1 * m1);
+    const double m2 = p.Slope(xm);
+    x += ds / std::sqrt(1.0 + m2 * m2);
+  }
+  return x;
 }
 
 /** Relative pivot size below which the system counts as singular. */

@@ -46,19 +46,28 @@ CRIT_HD double PreviewTime(const ControllerLimits& c, double v) {
 }
 
 /** Steering angle at the front wheels for the next step: the paper's law on the predicted
- *  errors against `section` (in the same local frame as `s`), then the angle and rate limits.
+ *  errors against `section` (in the same local frame as `s`; the errors are taken in the
+ *  section's own frame when it is rotated), then the angle and rate limits.
  *  @param previous_steer the angle commanded at the previous step.
- *  @param cos_course, sin_course direction of travel, yaw + sideslip. */
+ *  @param cos_course, sin_course direction of travel, yaw + sideslip.
+ *  @param wheelbase > 0: adds the section's curvature kappa at the predicted position as the
+ *  steady-state angle atan(wheelbase * kappa) (feed-forward; 0: the paper's law alone). */
 CRIT_HD double SteeringCommand(const ControllerLimits& c, const Parabola& section,
                                const MotionState& s, double previous_steer, double tau,
-                               double cos_course, double sin_course) {
+                               double cos_course, double sin_course, double wheelbase = 0.0) {
   const double tp = PreviewTime(c, s.v);
-  const double xp = s.x + cos_course * s.v * tp;
-  const double yp = s.y + sin_course * s.v * tp;
+  double xp = s.x + cos_course * s.v * tp;
+  double yp = s.y + sin_course * s.v * tp;
+  if (section.rot != 0.0) section.ToFrame(xp, yp, &xp, &yp);  // a turn's lane frame
   const double slope = section.Slope(xp);
   const double d_path = (section.Eval(xp) - yp) / std::sqrt(1.0 + slope * slope);
-  const double e_psi = WrapAngle(std::atan(slope) - s.yaw);
+  const double e_psi = WrapAngle(std::atan(slope) + section.rot - s.yaw);
   double cmd = PaperSteeringLawDeg(s.v, d_path, e_psi) * (kPi / 180.0);
+  if (wheelbase > 0.0) {  // feed-forward of the section's curvature (HypothesisSet)
+    const double kappa = 2.0 * (xp < section.x_end ? section.a : 0.0) /
+                         ((1.0 + slope * slope) * std::sqrt(1.0 + slope * slope));
+    cmd += std::atan(wheelbase * kappa);
+  }
   cmd = Clamp(cmd, -c.max_steer_rad, c.max_steer_rad);
   const double step = c.max_steer_rate_radps * tau;
   return Clamp(cmd, previous_steer - step, previous_steer + step);
@@ -78,8 +87,10 @@ CRIT_HD double SteeringCommand(const ControllerLimits& c, const Parabola& sectio
 CRIT_HD double OpenLoopSteer(const ControllerLimits& c, const Parabola& section, const MotionState& s,
                              double wheelbase, double lookahead_s) {
   const double ahead = Max(s.v * lookahead_s, 2.0);
-  const double xa = s.x + ahead * std::cos(s.yaw);
-  const double dx = xa - s.x, dy = section.Eval(xa) - s.y;
+  double xr, yr, px, py;
+  section.ToFrame(s.x, s.y, &xr, &yr);
+  section.PointAt(xr + ahead * std::cos(s.yaw - section.rot), &px, &py);
+  const double dx = px - s.x, dy = py - s.y;
   const double alpha = WrapAngle(std::atan2(dy, dx) - s.yaw);
   const double kappa = 2.0 * std::sin(alpha) / std::sqrt(dx * dx + dy * dy);
   return Clamp(std::atan(wheelbase * kappa), -c.max_steer_rad, c.max_steer_rad);

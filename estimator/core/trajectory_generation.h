@@ -95,7 +95,8 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
     const double cy = std::cos(s.yaw), sy = std::sin(s.yaw);
     if (cfg.controller.feedback) {
       st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau, cy * cb - sy * sb,
-                                  sy * cb + cy * sb);
+                                  sy * cb + cy * sb,
+                                  h.steer_feedforward ? h.vehicle.lf_m + h.vehicle.lr_m : 0.0);
     } else {  // the "controller off" ablation: one open-loop angle per section, held
       const int key = latent ? -1 : st->instant * kMaxLateralSamples + lateral;
       if (key != st->held_section) {

@@ -99,9 +99,13 @@ std::string BackendName(Backend backend) {
   return "unknown";
 }
 
-std::string LaneProblem(const Lane& lane) {
+double LaneFrameAngle(const LaneSet& lanes, const Params& params) {
+  return internal::LaneFrameAngle(lanes, params);
+}
+
+std::string LaneProblem(const Lane& lane, double frame_rad) {
   try {
-    internal::FitLanes(LaneSet{lane, std::nullopt, std::nullopt}, "lane");
+    internal::FitLanes(LaneSet{lane, std::nullopt, std::nullopt}, "lane", frame_rad);
   } catch (const InputError& e) {
     return e.what();
   }

@@ -105,6 +105,19 @@ struct ProfileScore {
   double d_lon{1.0};
 };
 
+// Params::steer_curvature_feedforward: whether a vehicle is already turning the way its lane
+// turns at its position (yaw rate of the lane's sign and at least kFeedforwardMinYawRate). A
+// parabola through three samples spreads a junction turn's curvature over the straight before
+// it; a vehicle still driving straight at the turn gets no feed-forward, which would turn it
+// in early across the lanes beside it.
+constexpr double kFeedforwardMinYawRate = 0.1;  // rad/s
+bool TurningAlongLane(const core::HypothesisSet& h, const core::Parabola& centre,
+                      const Params& p) {
+  if (!p.steer_curvature_feedforward || !p.lateral_controller) return false;
+  const double lane_turn = centre.a;  // the sign of its curvature (a frame keeps its sense)
+  return std::fabs(h.yaw_rate0) >= kFeedforwardMinYawRate && lane_turn * h.yaw_rate0 > 0.0;
+}
+
 // Fills the lateral part of a vehicle's hypothesis set and scores its paths; `lanes` of the
 // ego's lane samples (-1, 0, +1) when asked.
 std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool combine,
@@ -135,9 +148,10 @@ std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool 
   // each sample instant.
   const core::Parabola centre = lanes.own->Centre();
   h->reference_path = centre;
+  h->steer_feedforward = TurningAlongLane(*h, centre, p);
   std::vector<double> offset(static_cast<size_t>(n_inst) * n_lat);
   for (int k = 0; k < n_inst; ++k) {
-    const double x = ReferenceDistance(h->v0, a_ref, p.path_sample_times_s[k]);
+    const double x = core::XAfterArc(centre, 0.0, ReferenceDistance(h->v0, a_ref, p.path_sample_times_s[k]));
     for (int l = 0; l < n_lat; ++l) {
       offset[k * n_lat + l] = std::fabs(samples[l].curve.Eval(x) - centre.Eval(x));
     }
@@ -432,7 +446,7 @@ int DividerCrossings(const FittedLanes& lanes, double x0, double y0, double x1, 
   if (lanes.left) dividers.push_back(&lanes.left->left);
   int n = 0;
   for (const core::Parabola* d : dividers) {
-    if ((y0 - d->Eval(x0) > 0.0) != (y1 - d->Eval(x1) > 0.0)) ++n;
+    if ((d->OffsetFrom(x0, y0) < 0.0) != (d->OffsetFrom(x1, y1) < 0.0)) ++n;
   }
   return n;
 }
@@ -459,7 +473,8 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   const LaneSet ego_lanes = params.road_model
                                 ? CompleteEgoLanes(scene.ego, params)
                                 : VirtualLaneSet(scene.ego.state, params.virtual_lane_width_m);
-  const FittedLanes ego_fitted = FitLanes(ego_lanes, "scene.ego.lanes");
+  const FittedLanes ego_fitted =
+      FitLanes(ego_lanes, "scene.ego.lanes", params);
 
   // The ego: two-track model, every combination of path sections.
   {
@@ -512,7 +527,7 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
                     : v.lanes          ? *v.lanes
                                        : EgoLanesSeenBy(ego_lanes, X_EV, lane);
     if (!lanes.own) lanes.own = VirtualLane(v.state, params.virtual_lane_width_m);
-    const FittedLanes fitted = FitLanes(lanes, where + ".lanes");
+    const FittedLanes fitted = FitLanes(lanes, where + ".lanes", params);
     const double a_ref = ReferenceAccel(v.state, params);
     const std::optional<StopObligation> stop = CredibleStop(v, params);
     std::vector<double> accel;

@@ -106,7 +106,7 @@ void FinishDecisionOutputs(const Problem& pb, const Params& params,
       e.accel_mps2.push_back(s.ax);
       e.lateral_accel_mps2.push_back(s.ay);
       e.steer_rad.push_back(steer[n]);
-      e.lateral_offset_m.push_back(s.y - pb.ego_lane_centre.Eval(s.x));
+      e.lateral_offset_m.push_back(-pb.ego_lane_centre.OffsetFrom(s.x, s.y));
     }
     e.x_m = x;
     e.y_m = y;

@@ -10,9 +10,12 @@ namespace criticality::internal {
 namespace {
 
 constexpr double kMinPointSpacing = 0.01;  // m, along x in the local frame
+constexpr double kMaxLaneFrameRad = 1.3089969389957472;  // 75 degrees: the chord of a 150 degree turn
 
-core::Parabola FitDivider(const LaneDivider& d, const std::string& where) {
+core::Parabola FitDivider(const LaneDivider& d, const std::string& where, double frame_rad,
+                          bool straight_beyond) {
   double x[3], y[3];
+  const double c = std::cos(frame_rad), s = std::sin(frame_rad);
   for (int i = 0; i < 3; ++i) {
     x[i] = d.points[i].x;
     y[i] = d.points[i].y;
@@ -22,6 +25,11 @@ core::Parabola FitDivider(const LaneDivider& d, const std::string& where) {
           << "): coordinates must be finite";
       throw InputError(msg.str());
     }
+    if (frame_rad != 0.0) {  // into the lane's turn frame
+      const double xr = c * x[i] + s * y[i], yr = -s * x[i] + c * y[i];
+      x[i] = xr;
+      y[i] = yr;
+    }
   }
   for (int i = 0; i < 3; ++i) {
     for (int j = i + 1; j < 3; ++j) {
@@ -30,6 +38,7 @@ core::Parabola FitDivider(const LaneDivider& d, const std::string& where) {
         msg << where << ": points " << i << " and " << j << " have forward distances x = " << x[i]
             << " and " << x[j] << " m; the three points need distinct x (at least "
             << kMinPointSpacing << " m apart) in the observer's frame";
+        if (frame_rad != 0.0) msg << " turned by " << frame_rad * 180.0 / core::kPi << " deg";
         throw InputError(msg.str());
       }
     }
@@ -38,15 +47,20 @@ core::Parabola FitDivider(const LaneDivider& d, const std::string& where) {
   if (!core::FitParabola(x, y, &p)) {
     throw InputError(where + ": the three points do not define a lane divider y(x)");
   }
+  if (frame_rad != 0.0) p.SetFrame(frame_rad);
+  if (straight_beyond) p.x_end = std::fmax(x[0], std::fmax(x[1], x[2]));
   return p;
 }
 
-std::optional<FittedLane> FitLane(const std::optional<Lane>& lane, const std::string& where) {
+std::optional<FittedLane> FitLane(const std::optional<Lane>& lane, const std::string& where,
+                                  double frame_rad, bool straight_beyond) {
   if (!lane) return std::nullopt;
   FittedLane f;
-  f.left = FitDivider(lane->left, where + ".left");
-  f.right = FitDivider(lane->right, where + ".right");
+  f.left = FitDivider(lane->left, where + ".left", frame_rad, straight_beyond);
+  f.right = FitDivider(lane->right, where + ".right", frame_rad, straight_beyond);
   f.counter_traffic = lane->counter_traffic;
+  // Both dividers continue straight from the same distance along the turn frame.
+  f.left.x_end = f.right.x_end = 0.5 * (f.left.x_end + f.right.x_end);
   const double width = f.left.Eval(0.0) - f.right.Eval(0.0);
   if (!(width > 0.0)) {
     std::ostringstream msg;
@@ -64,7 +78,7 @@ LaneDivider DividerFrom(const core::Parabola& p, const std::array<double, 3>& xs
 }
 
 bool Contains(const FittedLane& lane, double x, double y) {
-  return y >= lane.right.Eval(x) && y <= lane.left.Eval(x);
+  return lane.right.OffsetFrom(x, y) <= 0.0 && lane.left.OffsetFrom(x, y) >= 0.0;
 }
 
 LaneDivider ToFrame(const LaneDivider& d, const core::Pose2& X_EV) {
@@ -118,12 +132,32 @@ LaneSet VirtualLaneSet(const ObjectState& state, double width) {
   return set;
 }
 
-FittedLanes FitLanes(const LaneSet& lanes, const std::string& where) {
+double LaneFrameAngle(const LaneSet& lanes, const Params& params) {
+  if (!params.turn_lane_frame || !lanes.own) return 0.0;
+  const Lane& own = *lanes.own;
+  const double x0 = 0.5 * (own.left.points[0].x + own.right.points[0].x);
+  const double y0 = 0.5 * (own.left.points[0].y + own.right.points[0].y);
+  const double x2 = 0.5 * (own.left.points[2].x + own.right.points[2].x);
+  const double y2 = 0.5 * (own.left.points[2].y + own.right.points[2].y);
+  const double chord = std::atan2(y2 - y0, x2 - x0);
+  if (!std::isfinite(chord) || std::fabs(chord) < params.turn_lane_frame_min_rad) return 0.0;
+  // A chord further off than this does not belong to a lane the observer drives along (a lane
+  // sampled against its direction of travel, or a U-turn): the paper's frame, which rejects it.
+  if (std::fabs(chord) > kMaxLaneFrameRad) return 0.0;
+  return chord;
+}
+
+FittedLanes FitLanes(const LaneSet& lanes, const std::string& where, double frame_rad,
+                     bool straight_beyond) {
   FittedLanes f;
-  f.own = FitLane(lanes.own, where + ".own");
-  f.left = FitLane(lanes.left, where + ".left");
-  f.right = FitLane(lanes.right, where + ".right");
+  f.own = FitLane(lanes.own, where + ".own", frame_rad, straight_beyond);
+  f.left = FitLane(lanes.left, where + ".left", frame_rad, straight_beyond);
+  f.right = FitLane(lanes.right, where + ".right", frame_rad, straight_beyond);
   return f;
+}
+
+FittedLanes FitLanes(const LaneSet& lanes, const std::string& where, const Params& params) {
+  return FitLanes(lanes, where, LaneFrameAngle(lanes, params), params.turn_lane_frame);
 }
 
 LaneSet CompleteEgoLanes(const Ego& ego, const Params& params) {

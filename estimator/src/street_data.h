@@ -40,9 +40,26 @@ Lane VirtualLane(const ObjectState& state, double width);
  *  lane of the same width on each side, no counter traffic. */
 LaneSet VirtualLaneSet(const ObjectState& state, double width);
 
-/** Fits every divider; throws InputError naming `where` (e.g. "scene.ego.lanes.left") when a
- *  divider's points do not define y(x) or the lane has no positive width at x = 0. */
-FittedLanes FitLanes(const LaneSet& lanes, const std::string& where);
+/** The frame an observer's lanes are fitted in, as an angle in its local frame: 0 (the
+ *  paper's: x along the observer's heading), or, with Params::turn_lane_frame, the direction of
+ *  its own lane's centre from the closest to the farthest sample (the chord) when that differs
+ *  from its heading by at least Params::turn_lane_frame_min_rad (and at most 75 degrees: a
+ *  chord further off, e.g. of a lane sampled against the observer's direction of travel, keeps
+ *  the paper's frame, which rejects it): a lane through a junction turn is then a function
+ *  y(x) along its chord, which the local frame cannot give it. */
+double LaneFrameAngle(const LaneSet& lanes, const Params& params);
+
+/** Fits every divider in the frame turned by frame_rad from the observer's (LaneFrameAngle),
+ *  with straight_beyond each lane continuing straight along its tangent beyond its farthest
+ *  sample (instead of the parabola curving on); throws InputError naming `where` (e.g.
+ *  "scene.ego.lanes.left") when a divider's points do not define y(x) there or the lane has no
+ *  positive width at the observer. */
+FittedLanes FitLanes(const LaneSet& lanes, const std::string& where, double frame_rad = 0.0,
+                     bool straight_beyond = false);
+
+/** The same in the frame and with the continuation the parameters ask for
+ *  (Params::turn_lane_frame). */
+FittedLanes FitLanes(const LaneSet& lanes, const std::string& where, const Params& params);
 
 /** The ego's lanes, with a virtual own lane when the scene gives none. */
 LaneSet CompleteEgoLanes(const Ego& ego, const Params& params);

@@ -159,6 +159,9 @@ void ValidateParams(const Params& p) {
   if (p.stop_violation_probability < 0.0 || p.stop_violation_probability > 1.0)
     Fail("params.stop_violation_probability", p.stop_violation_probability, "must be within 0..1");
   RequirePositive("params.stop_comfortable_decel_mps2", p.stop_comfortable_decel_mps2);
+  RequireFinite("params.turn_lane_frame_min_rad", p.turn_lane_frame_min_rad);
+  if (p.turn_lane_frame_min_rad < 0.0)
+    Fail("params.turn_lane_frame_min_rad", p.turn_lane_frame_min_rad, "must be >= 0");
   if (p.max_escape_routes < 0)
     Fail("params.max_escape_routes", p.max_escape_routes, "must be >= 0");
   if (p.max_memory_bytes == 0) Fail("params.max_memory_bytes", p.max_memory_bytes, "must be > 0");
@@ -179,6 +182,8 @@ Params ParamsPreset(const std::string& name) {
     p.w_str = 1.0;
     p.counter_traffic_penalty = 4.0;
     p.stop_obligations = false;
+    p.turn_lane_frame = false;
+    p.steer_curvature_feedforward = false;
     return p;
   }
   std::string names;

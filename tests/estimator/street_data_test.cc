@@ -8,6 +8,7 @@
 #include "bench/paper_scenes.h"
 #include "core/geometry.h"
 #include "core/lane_fit.h"
+#include "criticality/errors.h"
 
 namespace criticality::internal {
 namespace {
@@ -88,6 +89,68 @@ TEST(EgoLanesSeenBy, CrossingCarOrNoLaneGetsNothing) {
   LaneSet no_left = ego;
   no_left.left.reset();
   EXPECT_FALSE(EgoLanesSeenBy(no_left, core::Pose2{20.0, 3.5, 0.0}, LaneIndex::kLeft).own);
+}
+
+
+// A 90 degree right turn of radius 8 m from the observer (heading +x), 3.2 m wide, sampled at
+// its start, middle and end (what the SUMO driver gives a car entering a junction's turn).
+Lane RightTurnLane() {
+  const double r = 8.0;
+  auto divider = [&](double offset) {  // offset to the left of the centre line
+    LaneDivider d;
+    const double rr = r + offset;  // centre of the turn at (0, -r)
+    for (int i = 0; i < 3; ++i) {
+      const double a = core::kPi / 4 * i;
+      d.points[i] = Point2{rr * std::sin(a), -r + rr * std::cos(a)};
+    }
+    return d;
+  };
+  return Lane{divider(1.6), divider(-1.6), false};
+}
+
+TEST(TurnLaneFrame, AJunctionTurnIsFittedAlongItsChordAndLeavesItStraight) {
+  const LaneSet lanes{RightTurnLane(), std::nullopt, std::nullopt};
+  Params p;
+  const double frame = LaneFrameAngle(lanes, p);
+  EXPECT_NEAR(frame, -core::kPi / 4, 1e-9);  // the chord from (0, 0) to (8, -8)
+  const FittedLanes turned = FitLanes(lanes, "lanes", p);
+  const core::Parabola centre = turned.own->Centre();
+  // Beyond the turn the lane runs on along the exit (x = 8): a parabola through three points
+  // of the arc leaves it less than 5 degrees off (8 cm per metre).
+  double xr, yr;
+  centre.ToFrame(8.0, -8.0, &xr, &yr);
+  for (double beyond = 0.0; beyond <= 15.0; beyond += 1.0) {
+    double x, y;
+    centre.PointAt(xr + beyond * std::cos(core::kPi / 4), &x, &y);
+    EXPECT_NEAR(x, 8.0, 0.1 + 0.08 * beyond) << beyond << " m beyond the turn";
+  }
+  // It leaves the turn heading along the exit (-90 degrees), within 5 degrees.
+  EXPECT_NEAR(centre.Direction(xr + 5.0), -core::kPi / 2, 0.0873);
+  // Paper-literal keeps the observer's frame.
+  Params paper = p;
+  paper.turn_lane_frame = false;
+  EXPECT_EQ(LaneFrameAngle(lanes, paper), 0.0);
+  // Association in the turned frame: a point on the arc's middle is in the lane, one 2.5 m
+  // outside the arc is not.
+  const double m = core::kPi / 8;
+  EXPECT_EQ(AssociateLane(turned, 8.0 * std::sin(m), -8.0 + 8.0 * std::cos(m)), LaneIndex::kOwn);
+  EXPECT_EQ(AssociateLane(turned, 10.5 * std::sin(m), -8.0 + 10.5 * std::cos(m)),
+            LaneIndex::kNone);
+}
+
+TEST(TurnLaneFrame, StraightLanesAndLanesAgainstTheHeadingKeepThePapersFrame) {
+  Params p;
+  LaneSet straight;
+  straight.own = Lane{LaneDivider{{Point2{0, 1.6}, Point2{20, 1.7}, Point2{40, 1.9}}},
+                      LaneDivider{{Point2{0, -1.6}, Point2{20, -1.5}, Point2{40, -1.3}}}, false};
+  EXPECT_EQ(LaneFrameAngle(straight, p), 0.0);
+  // Sampled against the direction of travel (a car overtaking on the oncoming lane): the chord
+  // points backwards; no frame makes it a lane ahead, and the paper's fit rejects it.
+  LaneSet backwards;
+  backwards.own = Lane{LaneDivider{{Point2{4.5, -1.75}, Point2{2, -1.75}, Point2{-0.5, -1.75}}},
+                       LaneDivider{{Point2{4.5, 1.75}, Point2{2, 1.75}, Point2{-0.5, 1.75}}}, false};
+  EXPECT_EQ(LaneFrameAngle(backwards, p), 0.0);
+  EXPECT_THROW(FitLanes(backwards, "lanes", p), InputError);
 }
 
 }  // namespace

@@ -63,7 +63,8 @@ TEST(LaneCorridor, ContinuesAroundABendIntoTheNextLane) {
   // A right angle cannot be a lane y(x) in the vehicle's frame: the samples stop before it
   // (SampledReach), and the lane is the straight part up to the corner.
   c.centre = {{0, 0}, {20, 0}, {20, 100}};
-  const LaneSet corner = SampleLaneSet(c, 20.0, core::Pose2{10.0, 0.0, 0.0});
+  const LaneSet corner =
+      SampleLaneSet(c, 20.0, core::Pose2{10.0, 0.0, 0.0}, LaneSampling{false, 0.35});
   ASSERT_TRUE(corner.own);
   EXPECT_LE(corner.own->left.points[2].x, 10.0);
   EXPECT_GE(corner.own->left.points[2].x, 9.0);
@@ -87,7 +88,8 @@ TEST(LaneCorridor, SamplesStopWhereAJunctionTurnLeavesTheVehiclesHeading) {
   const double reach = SampledReach(c, 33.0, 0.0);
   EXPECT_LE(reach, arc60 + 0.5);
   EXPECT_GE(reach, arc60 - 1.0);
-  const LaneSet set = SampleLaneSet(c, 33.0, core::Pose2{0.0, 0.0, 0.0});
+  const LaneSet set =
+      SampleLaneSet(c, 33.0, core::Pose2{0.0, 0.0, 0.0}, LaneSampling{false, 0.35});
   ASSERT_TRUE(set.own);
   // Every sample curves right, never left of the start (the fit through a sample past the
   // turn did).
@@ -97,6 +99,22 @@ TEST(LaneCorridor, SamplesStopWhereAJunctionTurnLeavesTheVehiclesHeading) {
   LaneCorridor straight;
   straight.centre = {{0, 0}, {100, 0}};
   EXPECT_EQ(SampledReach(straight, 33.0, 0.0), 33.0);
+  EXPECT_EQ(SampledReach(straight, 33.0, 0.0, /*turn_lane_frame=*/true), 33.0);
+  // In the estimator's turn frame the samples go to the end of the turn (90 degrees of arc,
+  // 12.6 m) and no further: the lane then leaves the turn straight along its exit.
+  const double arc90 = r * core::kPi / 2;
+  const double turn_reach = SampledReach(c, 33.0, 0.0, /*turn_lane_frame=*/true);
+  EXPECT_GE(turn_reach, arc90 - 1.0);
+  EXPECT_LE(turn_reach, arc90 + 1.0);
+  const LaneSet turn = SampleLaneSet(c, 33.0, core::Pose2{0.0, 0.0, 0.0});
+  ASSERT_TRUE(turn.own);
+  EXPECT_NEAR(turn.own->right.points[2].x, r - 1.6, 0.3);  // the inner divider at the exit...
+  EXPECT_LT(turn.own->right.points[2].y, -r + 1.0);        // ... at the end of the turn
+  EXPECT_NEAR(LaneFrameAngle(turn, Params{}), -core::kPi / 4, 0.1);
+  // A turn of less than 60 degrees ahead keeps the whole reach.
+  LaneCorridor gentle;
+  gentle.centre = {{0, 0}, {10, 0}, {10 + 30 * std::cos(0.7), -30 * std::sin(0.7)}};
+  EXPECT_EQ(SampledReach(gentle, 33.0, 0.0, /*turn_lane_frame=*/true), 33.0);
 }
 
 TEST(LaneCorridor, DividersThatCrossInATightTurnAreLeftOut) {
@@ -114,7 +132,8 @@ TEST(LaneCorridor, DividersThatCrossInATightTurnAreLeftOut) {
   // Sampled up to 60 degrees into the arc (SampledReach), the right neighbour's far divider,
   // 4.8 m right of the centre line (more than the 1.5 m radius), folds back behind its middle
   // sample: that lane is left out; the own lane (+-1.6 m) stays.
-  const LaneSet set = SampleLaneSet(c, 14.0, core::Pose2{0.0, 0.0, 0.0});
+  const LaneSet set =
+      SampleLaneSet(c, 14.0, core::Pose2{0.0, 0.0, 0.0}, LaneSampling{false, 0.35});
   ASSERT_TRUE(set.own);
   for (int i = 0; i < 3; ++i) EXPECT_GT(set.own->left.points[i].y, set.own->right.points[i].y);
   EXPECT_EQ(LaneProblem(*set.own), "");

@@ -164,7 +164,16 @@ PY
     # SUMO goes away mid-run (a closed sumo-gui): SUMO error, completed steps kept.
     db=$work/dies.sqlite; rm -f "$db"
     start_sumo motorway_dense_free motorway.sumocfg
-    (sleep 4; kill -9 $sumo_pid 2>/dev/null) &
+    # Killed once the run has recorded some steps (a fixed delay raced the whole 2 s run on an
+    # idle machine: the run completed before SUMO was killed).
+    (for _ in $(seq 1 400); do
+       sleep 0.05
+       n=0
+       [ -f "$db" ] && n=$(sqlite3 -readonly -cmd ".timeout 1000" "$db" \
+                             "select count(*) from steps" 2>/dev/null)
+       [ "${n:-0}" -ge 5 ] && break
+     done
+     kill -9 $sumo_pid 2>/dev/null) &
     err=$("$driver" --connect "127.0.0.1:$port" --ego ego --output "$db" --no-progress 2>&1 >/dev/null); rc=$?
     echo "   -> $err"
     check "SUMO died: exit 3" test $rc -eq 3

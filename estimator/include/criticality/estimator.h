@@ -28,10 +28,15 @@ std::string BackendName(Backend backend);
 bool CudaUsable(std::string* why);
 
 /** Empty when the estimator can use `lane` as given (its dividers define y(x) in the observer's
- *  frame and the lane has a positive width at the observer); otherwise why not. Lets a caller
- *  that builds lanes from a map (the SUMO driver) leave out a lane instead of failing the
- *  estimate. */
-std::string LaneProblem(const Lane& lane);
+ *  frame turned by frame_rad, see LaneFrameAngle, and the lane has a positive width at the
+ *  observer); otherwise why not. Lets a caller that builds lanes from a map (the SUMO driver)
+ *  leave out a lane instead of failing the estimate. */
+std::string LaneProblem(const Lane& lane, double frame_rad = 0.0);
+
+/** The frame the estimator fits an observer's `lanes` in, as an angle from its heading: 0, or
+ *  the direction of its own lane's chord when that lane turns across its heading
+ *  (Params::turn_lane_frame). */
+double LaneFrameAngle(const LaneSet& lanes, const Params& params);
 
 /** Execution settings (not part of the algorithm). */
 struct EstimatorOptions {

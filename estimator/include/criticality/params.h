@@ -87,6 +87,16 @@ struct Params {
    *  constant steering in the manner the paper criticises (Broadhurst et al.), so that
    *  hypotheses leave the road. For evaluations only; default true. */
   bool lateral_controller{true};
+  /** The paper's steering law reacts to errors only, so a vehicle in a tight turn (a junction's
+   *  right turn, radius 5-10 m) builds up an error before it steers and leaves the turn wide,
+   *  into the lane beside the exit. With true, for a vehicle already turning the way its lane
+   *  turns (a yaw rate of at least 0.1 rad/s), the curvature kappa of the path section at the
+   *  predicted position adds its steady-state angle atan(wheelbase * kappa) (kinematic
+   *  single-track), as path-tracking controllers do (feed-forward); the angle and rate limits
+   *  still apply. A vehicle still straight before a turn gets none: the parabola spreads the
+   *  turn over the straight before it, and would turn it in early. Project choice;
+   *  paper-literal: false. */
+  bool steer_curvature_feedforward{true};
 
   // --- Street data (paper Sec. IV-A) ---
   /** Width of the virtual own lane when the sensors deliver none. RAA (FGSV 2008): 3.5-3.75 m. */
@@ -97,6 +107,20 @@ struct Params {
    *  on each side, so the number of hypotheses stays the same but they know nothing of the road
    *  (its curves, which lanes exist, counter traffic). For evaluations only; default true. */
   bool road_model{true};
+  /** The paper's lane model is a parabola y(x) in the observer's frame: it cannot follow a lane
+   *  that turns across the observer's heading (a junction turn), and fitted through such a
+   *  turn it runs on into the lanes beside the turn's exit (estimator/ALGORITHM.md "Lanes in
+   *  junction turns"). With true, an observer whose own lane's centre, from its closest to its
+   *  farthest sample (the chord), points at least turn_lane_frame_min_rad away from its heading
+   *  has its lanes fitted in the frame along that chord instead, where a turn of up to about
+   *  90 degrees is a function y(x); lanes that turn less keep the paper's frame. Either way,
+   *  every lane then continues straight along its tangent beyond its farthest sample (the
+   *  SUMO driver samples a turn up to its end) instead of the parabola curving on.
+   *  Project choice; paper-literal: false. */
+  bool turn_lane_frame{true};
+  /** See turn_lane_frame: 20 degrees (a chord that far off belongs to a turn of about 40
+   *  degrees; road curves over a sampled reach turn far less). */
+  double turn_lane_frame_min_rad{0.35};
 
   // --- Drivability (DESIGN.md: every hypothesis must be drivable). The paper asks for drivable
   // trajectories but leaves these limits open; ParamsPreset("paper-literal") turns them off. ---

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "core/trajectory_generation.h"
@@ -102,6 +103,57 @@ TEST(LateralController, PaperLawSignsAndDegrees) {
   EXPECT_NEAR(PaperSteeringLawDeg(20.0, 1.0, 0.0), 1.64, 1e-12);
   EXPECT_LT(PaperSteeringLawDeg(20.0, -1.0, 0.0), 0.0);
   EXPECT_NEAR(PaperSteeringLawDeg(20.0, 0.0, 0.1), 9.5 * 3.8197 * 0.1, 1e-12);
+}
+
+
+// A junction's right turn: radius 8 m from the origin (heading +x), in a frame turned by -45
+// degrees along its chord (what the estimator fits such a lane in), continuing straight beyond
+// its end. Tracked at 6.5 m/s (SUMO's speed for such turns), the paper's law alone builds up an
+// error before it steers and leaves the turn wide; with the curvature feed-forward the
+// vehicle stays on the arc.
+double WorstOffsetFromRightTurn(bool feedforward) {
+  const double r = 8.0, rot = -kPi / 4;
+  // The arc's three points in the turned frame, fitted there.
+  const double xs_local[3] = {0.0, r * std::sin(kPi / 4), r};
+  const double ys_local[3] = {0.0, -r * (1.0 - std::cos(kPi / 4)), -r};
+  double xr[3], yr[3];
+  for (int i = 0; i < 3; ++i) {
+    xr[i] = std::cos(rot) * xs_local[i] + std::sin(rot) * ys_local[i];
+    yr[i] = -std::sin(rot) * xs_local[i] + std::cos(rot) * ys_local[i];
+  }
+  Parabola lane;
+  EXPECT_TRUE(FitParabola(xr, yr, &lane));
+  lane.SetFrame(rot);
+  lane.x_end = xr[2];
+  HypothesisSet h = Tracker(6.5, 0.0);
+  h.section[0][0] = lane;
+  h.reference_path = lane;
+  h.yaw_rate0 = -6.5 / r;
+  h.steer_feedforward = feedforward;
+  SimulationConfig cfg;
+  cfg.n_steps = 100;  // 2 s: 13 m, the turn (12.6 m of arc) and a little beyond
+  std::vector<double> x(cfg.n_steps), y(cfg.n_steps), yaw(cfg.n_steps);
+  SimulateHypothesis(h, cfg, 0, 0, x.data(), y.data(), yaw.data());
+  double worst = 0.0;
+  for (int n = 0; n < cfg.n_steps; ++n) {
+    // Distance from the turn: the arc around (0, -r), then the straight exit x = r.
+    const double off = y[n] > -r ? std::fabs(std::hypot(x[n], y[n] + r) - r) : std::fabs(x[n] - r);
+    worst = std::fmax(worst, off);
+  }
+  return worst;
+}
+
+TEST(LateralController, CurvatureFeedforwardKeepsATurningVehicleInItsTurn) {
+  const double with = WorstOffsetFromRightTurn(true);
+  const double without = WorstOffsetFromRightTurn(false);
+  std::printf("worst offset from the turn: %.2f m with feed-forward, %.2f m without\n", with,
+              without);
+  // Measured: 1.03 m with, 2.33 m without. Part of the 1 m is the lane model's, not the
+  // controller's: the parabola through three points of the arc starts and ends about 5 degrees
+  // off the arc's direction.
+  EXPECT_LT(with, 1.2);
+  EXPECT_GT(without, 2.0);  // the paper's law alone leaves the turn wide, into the next lane
+  EXPECT_LT(with, 0.5 * without);
 }
 
 }  // namespace
