@@ -25,6 +25,8 @@ struct ObjectSnapshot {
   /** A vehicle's obligation to stop ahead, as SUMO knows it (sumo_world.h): its next signal
    *  is red or yellow, or its next link is a stop sign or yields to an approaching foe. */
   std::optional<StopLine> stop_line;
+  /** A person's walk goes on along the footway (plugin/footway.h, Pedestrian::stays_on_footway). */
+  bool stays_on_footway{false};
   std::string lane;  ///< SUMO lane ID ("" when not on a lane)
   std::string edge;  ///< SUMO edge ID of that lane
 };

@@ -77,6 +77,7 @@ Scene BuildScene(const ObjectSnapshot& ego, const std::vector<const ObjectSnapsh
       p.state = o->state;
       p.length_m = o->length_m;
       p.width_m = o->width_m;
+      p.stays_on_footway = o->stays_on_footway;
       scene.pedestrians.push_back(std::move(p));
     } else {
       Vehicle v;

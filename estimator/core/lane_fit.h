@@ -28,6 +28,13 @@ struct Parabola {
     return (a * x + b) * x + c;
   }
   CRIT_HD double Slope(double x) const { return 2.0 * a * (x < x_end ? x : x_end) + b; }
+  /** Unsigned curvature at x (parabola's frame): 2|a| / (1 + slope^2)^1.5; 0 beyond x_end. */
+  CRIT_HD double Curvature(double x) const {
+    if (x > x_end) return 0.0;
+    const double m = Slope(x);
+    const double q = 1.0 + m * m;
+    return 2.0 * std::fabs(a) / (q * std::sqrt(q));
+  }
   /** A point of the local frame in the parabola's frame. */
   CRIT_HD void ToFrame(double x, double y, double* xr, double* yr) const {
     *xr = cos_rot * x + sin_rot * y;

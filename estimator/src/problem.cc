@@ -84,12 +84,33 @@ void SetPose(const ObjectState& s, double length, double width, core::Hypothesis
   h->half_width = 0.5 * width;
 }
 
-// The acceleration of the reference hypothesis: the current one, or the expected one where the
-// caller gives it and it is lower (Params::expected_accel_reference).
-double ReferenceAccel(const ObjectState& s, const Params& p) {
-  if (p.expected_accel_reference && s.expected_accel_mps2)
-    return std::fmin(s.accel_mps2, *s.expected_accel_mps2);
-  return s.accel_mps2;
+// Params::curve_speed_reference: the constant acceleration that brings a vehicle at speed v,
+// by each of 20 points of its lane centre within v x horizon, to the speed at which that
+// point's curvature asks curve_lateral_accel_mps2; the lowest of them, at least
+// -curve_decel_max_mps2; +inf where no point asks for less speed.
+double CurveAccel(double v, const core::Parabola& centre, const Params& p) {
+  if (!p.curve_speed_reference || !(v > 0.0)) return HUGE_VAL;
+  double x0, y0;
+  centre.ToFrame(0.0, 0.0, &x0, &y0);
+  const double reach = v * p.horizon_s;
+  const int n = 20;
+  double a = HUGE_VAL;
+  for (int i = 1; i <= n; ++i) {
+    const double s = reach * i / n;
+    const double k = centre.Curvature(core::XAfterArc(centre, x0, s));
+    const double v_curve2 = k > 0.0 ? p.curve_lateral_accel_mps2 / k : HUGE_VAL;
+    if (v_curve2 < v * v) a = std::fmin(a, (v_curve2 - v * v) / (2.0 * s));
+  }
+  return a == HUGE_VAL ? a : std::fmax(a, -p.curve_decel_max_mps2);
+}
+
+// The acceleration of the reference hypothesis: the current one, or lower where the caller
+// gives a lower expected one (Params::expected_accel_reference) or the lane's curve asks for
+// less speed (Params::curve_speed_reference).
+double ReferenceAccel(const ObjectState& s, const core::Parabola& centre, const Params& p) {
+  double a = s.accel_mps2;
+  if (p.expected_accel_reference && s.expected_accel_mps2) a = std::fmin(a, *s.expected_accel_mps2);
+  return std::fmin(a, CurveAccel(s.speed_mps, centre, p));
 }
 
 // The path part of the scores: d_path (the lateral part of d_str) and c_com * c_cou.
@@ -451,6 +472,13 @@ int DividerCrossings(const FittedLanes& lanes, double x0, double y0, double x1, 
   return n;
 }
 
+// Whether (x, y) (ego frame) lies between the ego's outermost lane dividers.
+bool InsideLanes(const FittedLanes& lanes, double x, double y) {
+  const core::Parabola& leftmost = lanes.left ? lanes.left->left : lanes.own->left;
+  const core::Parabola& rightmost = lanes.right ? lanes.right->right : lanes.own->right;
+  return leftmost.OffsetFrom(x, y) > 0.0 && rightmost.OffsetFrom(x, y) < 0.0;
+}
+
 }  // namespace
 
 std::uint64_t WorkloadBytes(std::uint64_t ego_trajectories, std::uint64_t co_trajectories,
@@ -484,12 +512,11 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
         VehicleModelParams(scene.ego.length_m, scene.ego.width_m, scene.ego.height_m, params);
     SetPose(scene.ego.state, scene.ego.length_m, scene.ego.width_m, &h);
     h.seam_speed = core::SeamSpeed(h.vehicle, params.step_s, params.euler_stability_factor);
+    const double a_ref = ReferenceAccel(scene.ego.state, ego_fitted.own->Centre(), params);
     const std::vector<ProfileScore> profiles =
-        SetVehicleProfiles(params, ReferenceAccel(scene.ego.state, params), &h,
-                           &pb.ego_profile_accel, &pb.ego_profile_slip);
+        SetVehicleProfiles(params, a_ref, &h, &pb.ego_profile_accel, &pb.ego_profile_slip);
     const std::vector<PathScore> paths =
-        SetPaths(ego_fitted, params, /*combine=*/true, ReferenceAccel(scene.ego.state, params), &h,
-                 &pb.ego_sample_lane);
+        SetPaths(ego_fitted, params, /*combine=*/true, a_ref, &h, &pb.ego_sample_lane);
     AppendProbabilities(profiles, paths, params, &pb.ego_probability);
     pb.ego_lane_centre = ego_fitted.own->Centre();
     for (size_t i = 1; i < pb.ego_probability.size(); ++i) {
@@ -528,7 +555,7 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
                                        : EgoLanesSeenBy(ego_lanes, X_EV, lane);
     if (!lanes.own) lanes.own = VirtualLane(v.state, params.virtual_lane_width_m);
     const FittedLanes fitted = FitLanes(lanes, where + ".lanes", params);
-    const double a_ref = ReferenceAccel(v.state, params);
+    const double a_ref = ReferenceAccel(v.state, fitted.own->Centre(), params);
     const std::optional<StopObligation> stop = CredibleStop(v, params);
     std::vector<double> accel;
     int stop_profile = -1;
@@ -596,7 +623,11 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
       return DividerCrossings(ego_fitted, px, py, px + reach * std::cos(d),
                               py + reach * std::sin(d));
     };
-    const int straight_on = crossings(ped.state.yaw_rad);
+    // Params::footway_pedestrians: outside the ego's lanes on a footway it keeps to, every
+    // crossing onto them counts; otherwise against the straight-on heading's.
+    const bool keeps_off = params.footway_pedestrians && ped.stays_on_footway &&
+                           !InsideLanes(ego_fitted, px, py);
+    const int straight_on = keeps_off ? 0 : crossings(ped.state.yaw_rad);
     std::vector<PathScore> headings(h.n_paths);
     for (int l = 0; l < h.n_paths; ++l) {
       const double turn = core::WrapAngle(2.0 * core::kPi * l / h.n_paths);

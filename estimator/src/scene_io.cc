@@ -120,6 +120,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
     out << "pedestrian " << p.id;
     WriteState(out, p.state);
     out << ' ' << p.length_m << ' ' << p.width_m << '\n';
+    if (p.stays_on_footway) out << "footway\n";
   }
 }
 
@@ -128,6 +129,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
   LaneSet* lanes = nullptr;
   ObjectState* state = nullptr;  // of the last ego or vehicle, for 'expected-accel'
   Vehicle* vehicle = nullptr;    // the last vehicle read, for its 'stop' line
+  Pedestrian* pedestrian = nullptr;  // the last pedestrian read, for its 'footway' line
   bool header = false, ego = false;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
@@ -155,6 +157,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       lanes = &scene.ego.lanes;
       state = &scene.ego.state;
       vehicle = nullptr;
+      pedestrian = nullptr;
       ego = true;
     } else if (kind == "vehicle") {
       Vehicle v;
@@ -169,6 +172,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       lanes = has_lanes ? &*scene.vehicles.back().lanes : nullptr;
       state = &scene.vehicles.back().state;
       vehicle = &scene.vehicles.back();
+      pedestrian = nullptr;
     } else if (kind == "pedestrian") {
       Pedestrian p;
       p.id = r.Word();
@@ -179,6 +183,10 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       lanes = nullptr;
       state = nullptr;
       vehicle = nullptr;
+      pedestrian = &scene.pedestrians.back();
+    } else if (kind == "footway") {
+      if (!pedestrian) throw InputError(r.where + ": 'footway' must follow a pedestrian");
+      pedestrian->stays_on_footway = true;
     } else if (kind == "expected-accel") {
       if (!state) throw InputError(r.where + ": 'expected-accel' must follow an ego or a vehicle");
       state->expected_accel_mps2 = r.Num();
@@ -219,7 +227,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
         throw InputError(r.where + ": lane '" + which + "' must be own, left or right");
     } else {
       throw InputError(r.where + ": unknown record '" + kind +
-                       "' (ego, vehicle, pedestrian, lane, stop, expected-accel)");
+                       "' (ego, vehicle, pedestrian, lane, stop, footway, expected-accel)");
     }
     if (r.next != r.words.size()) throw InputError(r.where + ": too many values");
   }

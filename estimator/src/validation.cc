@@ -159,6 +159,8 @@ void ValidateParams(const Params& p) {
   if (p.stop_violation_probability < 0.0 || p.stop_violation_probability > 1.0)
     Fail("params.stop_violation_probability", p.stop_violation_probability, "must be within 0..1");
   RequirePositive("params.stop_comfortable_decel_mps2", p.stop_comfortable_decel_mps2);
+  RequirePositive("params.curve_lateral_accel_mps2", p.curve_lateral_accel_mps2);
+  RequirePositive("params.curve_decel_max_mps2", p.curve_decel_max_mps2);
   RequireFinite("params.turn_lane_frame_min_rad", p.turn_lane_frame_min_rad);
   if (p.turn_lane_frame_min_rad < 0.0)
     Fail("params.turn_lane_frame_min_rad", p.turn_lane_frame_min_rad, "must be >= 0");
@@ -184,6 +186,8 @@ Params ParamsPreset(const std::string& name) {
     p.stop_obligations = false;
     p.turn_lane_frame = false;
     p.steer_curvature_feedforward = false;
+    p.footway_pedestrians = false;
+    p.curve_speed_reference = false;
     return p;
   }
   std::string names;

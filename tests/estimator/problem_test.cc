@@ -195,6 +195,95 @@ TEST(Problem, PedestriansStepOntoTheRoadRarely) {
               1.0, 1e-9);
 }
 
+TEST(Problem, APedestrianThatStaysOnTheFootwayIsExpectedToStayOffTheRoad) {
+  // The walker 1 m right of the ego lane, heading 45 deg towards it: its straight-on line
+  // crosses the lane edge within its reach (1.4 m/s x 2 s), turning 51 deg right (-6 deg)
+  // does not. Counted against the straight-on heading, turning away is the manoeuvre; for a
+  // walker that SUMO keeps on the footway, stepping onto the road is.
+  Scene scene = bench::PaperSceneS1();
+  scene.vehicles.clear();
+  scene.ego.lanes.right.reset();
+  Pedestrian walker;
+  walker.id = "walker";
+  walker.state.x_m = 20.0;
+  walker.state.y_m = -2.75;
+  walker.state.yaw_rad = 0.25 * core::kPi;
+  walker.state.speed_mps = 1.4;
+  scene.pedestrians = {walker};
+  const int straight_on = 0, away = 6;
+  auto ratio = [&](const Problem& pb) {
+    return PathMass(pb, 0, [&](int l) { return l == straight_on; }) /
+           PathMass(pb, 0, [&](int l) { return l == away; });
+  };
+  const double stepping_out = ratio(BuildProblem(scene, Params{}));
+  scene.pedestrians[0].stays_on_footway = true;
+  const double staying = ratio(BuildProblem(scene, Params{}));
+  // The two penalties of 100 swap sides.
+  EXPECT_NEAR(stepping_out / staying, 1e4, 1e-6);
+  EXPECT_GT(stepping_out, 1.0);
+  EXPECT_LT(staying, 1.0);
+  // Off in paper-literal and with Params::footway_pedestrians false.
+  Params off;
+  off.footway_pedestrians = false;
+  EXPECT_EQ(ratio(BuildProblem(scene, off)), stepping_out);
+  scene.pedestrians[0].stays_on_footway = false;
+  const Problem literal = BuildProblem(scene, ParamsPreset("paper-literal"));
+  scene.pedestrians[0].stays_on_footway = true;
+  EXPECT_EQ(BuildProblem(scene, ParamsPreset("paper-literal")).co_probability,
+            literal.co_probability);
+  // Already inside the ego's lanes (SUMO's walking areas overlap a turn's lane): the straight-on
+  // heading stays the reference, as for any walker.
+  scene.pedestrians[0].state.y_m = -1.0;
+  const Problem inside = BuildProblem(scene, Params{});
+  scene.pedestrians[0].stays_on_footway = false;
+  EXPECT_EQ(inside.co_probability, BuildProblem(scene, Params{}).co_probability);
+}
+
+// The ego entering a 90 degree right turn of radius r (lane 3.2 m wide), sampled at its start,
+// middle and end as the SUMO driver samples a junction's turn.
+Scene EgoEnteringRightTurn(double r, double speed) {
+  Scene scene;
+  auto divider = [&](double offset) {  // offset to the left of the centre line
+    LaneDivider d;
+    for (int i = 0; i < 3; ++i) {
+      const double a = core::kPi / 4 * i;
+      d.points[i] = Point2{(r + offset) * std::sin(a), -r + (r + offset) * std::cos(a)};
+    }
+    return d;
+  };
+  scene.ego.lanes.own = Lane{divider(1.6), divider(-1.6), false};
+  scene.ego.state.speed_mps = speed;
+  return scene;
+}
+
+double ReferenceProfileAccel(const Problem& pb) {
+  return pb.ego_profile_accel[pb.ego_reference_trajectory / pb.ego.n_paths];
+}
+
+TEST(Problem, AReferenceTooFastForItsTurnBrakesForIt) {
+  // 7.2 m/s into a 5.6 m turn asks 9.3 m/s^2 of lateral acceleration (what SUMO drives, beyond
+  // what a tyre gives beside any acceleration): the reference brakes, at most normally.
+  const Problem fast = BuildProblem(EgoEnteringRightTurn(5.6, 7.2), Params{});
+  EXPECT_LT(ReferenceProfileAccel(fast), -2.0);
+  EXPECT_GE(ReferenceProfileAccel(fast), -Params{}.curve_decel_max_mps2 - 1e-9);
+  // 4 m/s asks about 3 m/s^2, within curve_lateral_accel_mps2: the current acceleration stays.
+  Scene slow = EgoEnteringRightTurn(5.6, 4.0);
+  slow.ego.state.accel_mps2 = 1.0;
+  EXPECT_EQ(ReferenceProfileAccel(BuildProblem(slow, Params{})), 1.0);
+  // An expectation lower still wins.
+  Scene expecting = EgoEnteringRightTurn(5.6, 7.2);
+  expecting.ego.state.expected_accel_mps2 = -6.0;
+  EXPECT_EQ(ReferenceProfileAccel(BuildProblem(expecting, Params{})), -6.0);
+  // Off: the current acceleration.
+  Params off;
+  off.curve_speed_reference = false;
+  EXPECT_EQ(ReferenceProfileAccel(BuildProblem(EgoEnteringRightTurn(5.6, 7.2), off)), 0.0);
+  EXPECT_FALSE(ParamsPreset("paper-literal").curve_speed_reference);
+  // A gentle curve (radius 60 m) at 13.9 m/s asks 3.2 m/s^2: nothing changes.
+  Scene gentle = EgoEnteringRightTurn(60.0, 13.9);
+  EXPECT_EQ(ReferenceProfileAccel(BuildProblem(gentle, Params{})), 0.0);
+}
+
 TEST(Problem, PresetsAreNamed) {
   const Params literal = ParamsPreset("paper-literal");
   EXPECT_EQ(literal.scoring, Params::Scoring::kPaperLiteral);

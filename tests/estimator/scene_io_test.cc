@@ -43,6 +43,24 @@ TEST(SceneIo, ExpectedAccelerationsRoundTrip) {
   EXPECT_EQ(back.vehicles[1].lanes.has_value(), scene.vehicles[1].lanes.has_value());
 }
 
+TEST(SceneIo, FootwayFlagsRoundTrip) {
+  Scene scene = testing::RandomScene(6, 1, 0, true);
+  for (int i = 0; i < 3; ++i) {
+    Pedestrian p;
+    p.id = "p" + std::to_string(i);
+    p.state.x_m = 5.0 + i;
+    p.stays_on_footway = i == 1;
+    scene.pedestrians.push_back(p);
+  }
+  std::stringstream file;
+  WriteScene(file, scene);
+  const Scene back = ReadScene(file);
+  ASSERT_EQ(back.pedestrians.size(), 3u);
+  EXPECT_FALSE(back.pedestrians[0].stays_on_footway);
+  EXPECT_TRUE(back.pedestrians[1].stays_on_footway);
+  EXPECT_FALSE(back.pedestrians[2].stays_on_footway);
+}
+
 TEST(SceneIo, BadFilesNameTheLine) {
   auto error = [](const std::string& text) {
     std::istringstream in(text);
@@ -63,6 +81,13 @@ TEST(SceneIo, BadFilesNameTheLine) {
             std::string::npos);
   EXPECT_NE(error("criticality-scene 1\npedestrian p 0 0 0 1 0 0 0 .5 .5\nexpected-accel -1\n")
                 .find("f.scene:3: 'expected-accel' must follow"),
+            std::string::npos);
+  EXPECT_NE(error("criticality-scene 1\nego e 0 0 0 1 0 0 0 4.5 1.8 -\nfootway\n")
+                .find("f.scene:3: 'footway' must follow a pedestrian"),
+            std::string::npos);
+  EXPECT_NE(error("criticality-scene 1\npedestrian p 0 0 0 1 0 0 0 .5 .5\n"
+                  "vehicle v 9 0 0 1 0 0 0 4.5 1.8 - 0\nfootway\n")
+                .find("f.scene:4: 'footway' must follow a pedestrian"),
             std::string::npos);
   EXPECT_THROW(ReadSceneFile("/nonexistent.scene"), InputError);
 }

@@ -52,6 +52,12 @@ struct Params {
   double pedestrian_accel_max_mps2{12.0};
   /** Speed limit, paper: 2.7 m/s (slow to running, not sprinting; Zebala et al. 2012). */
   double pedestrian_max_speed_mps{2.7};
+  /** kNaturalistic: a pedestrian outside the ego's lanes that stays on the footway
+   *  (Pedestrian::stays_on_footway) has the lane crossings of each heading counted from none,
+   *  not against its straight-on heading's: walking on along a corner's footway whose straight
+   *  line would cut into the road is not read as stepping out. Project choice (SUMO's walking
+   *  areas); paper-literal: off. */
+  bool footway_pedestrians{true};
 
   // --- Lateral controller (paper Sec. IV-B-2b) ---
   /** Steering-angle limit at the front wheels. DESIGN.md: at most about 0.5 rad. */
@@ -175,6 +181,23 @@ struct Params {
    *  around the expected reaction keep the ones in which they do not, with their lower
    *  scores. Project choice; paper-literal: false. */
   bool expected_accel_reference{true};
+  /** With true, the reference of a vehicle (the ego too) that is too fast for the curve of its
+   *  own lane ahead brakes for it: the constant deceleration that brings it, by the point of the
+   *  lane's centre within speed x horizon where it matters most, to the speed at which that
+   *  point's curvature asks curve_lateral_accel_mps2 of it (at most curve_decel_max_mps2), where
+   *  that is below the current acceleration. SUMO moves its vehicles along a junction's lanes
+   *  at speeds whose lateral acceleration no tyre transmits beside acceleration (9 m/s^2 in a
+   *  5.6 m right turn at 7.2 m/s); a reference that kept accelerating there left the turn wide
+   *  and crossed the exit road's other lane. Project choice; paper-literal: false. */
+  bool curve_speed_reference{true};
+  /** See curve_speed_reference. 5.5 m/s^2: the lateral acceleration from which SUMO's
+   *  netconvert sets turning speeds (junctions.limit-turn-speed), above what drivers choose in
+   *  comfort (about 0.3-0.4 g), so that only a speed that is too high for any normal driving
+   *  makes the reference brake. */
+  double curve_lateral_accel_mps2{5.5};
+  /** See curve_speed_reference: normal braking (4.5 m/s^2, AASHTO; the cap of the driver's
+   *  car-following expectation, plugin/car_following.h). */
+  double curve_decel_max_mps2{4.5};
 
   // --- Stop obligations (Vehicle::stop_line; the paper is silent: estimator/ALGORITHM.md) ---
   /** With true, a vehicle with a credible obligation to stop (below) gets a stopping profile:

@@ -111,6 +111,11 @@ struct Pedestrian {
   ObjectState state;
   double length_m{0.5};
   double width_m{0.5};
+  /** Its walk goes on along the footway (a sidewalk or a corner's walking area, and no crossing
+   *  next), as SUMO knows it: outside the ego's lanes, stepping onto them is then a manoeuvre
+   *  whatever its heading (Params::footway_pedestrians; estimator/ALGORITHM.md, "Pedestrians on
+   *  the footway"). */
+  bool stays_on_footway{false};
 };
 
 /** Everything one estimate needs. */

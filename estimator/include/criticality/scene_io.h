@@ -10,9 +10,11 @@
  *    vehicle ID x y yaw speed accel yaw_rate sideslip length width height|- LANES(0|1)
  *    stop red|yellow|yield DISTANCE
  *    pedestrian ID x y yaw speed accel yaw_rate sideslip length width
+ *    footway
  *    expected-accel A
  *  `lane` lines belong to the ego or vehicle line before them (for a vehicle only when its
- *  LANES flag is 1); a `stop` line (Vehicle::stop_line) to the vehicle line before it; an
+ *  LANES flag is 1); a `stop` line (Vehicle::stop_line) to the vehicle line before it; a
+ *  `footway` line (Pedestrian::stays_on_footway) to the pedestrian line before it; an
  *  `expected-accel` line sets ObjectState::expected_accel_mps2 of the ego or vehicle line
  *  before it (absent: not set). */
 #include <istream>
