@@ -170,10 +170,9 @@ TEST(Problem, TheCurrentAccelerationIsAProfile) {
   EXPECT_EQ(BuildProblem(scene, ParamsPreset("paper-literal")).cos[0].profile_target[4], 0.0);
 }
 
-TEST(Problem, PedestriansStepOntoTheRoadRarely) {
-  // A pedestrian walking along the kerb 1 m right of the ego lane: turning 51 deg towards the
-  // road crosses the lane edge within its reach (1.4 m/s x 2 s), turning 51 deg away does not;
-  // both score the same otherwise, so their ratio is the crossing penalty.
+// S1's ego alone, without its right lane, and a walker at 1.4 m/s, 20 m ahead and 1 m right of
+// the ego lane's edge, heading `yaw` (0: along the road).
+Scene WalkerBesideTheEgoLane(double yaw) {
   Scene scene = bench::PaperSceneS1();
   scene.vehicles.clear();
   scene.ego.lanes.right.reset();
@@ -181,8 +180,17 @@ TEST(Problem, PedestriansStepOntoTheRoadRarely) {
   walker.id = "walker";
   walker.state.x_m = 20.0;
   walker.state.y_m = -2.75;
+  walker.state.yaw_rad = yaw;
   walker.state.speed_mps = 1.4;
   scene.pedestrians = {walker};
+  return scene;
+}
+
+TEST(Problem, PedestriansStepOntoTheRoadRarely) {
+  // A pedestrian walking along the kerb 1 m right of the ego lane: turning 51 deg towards the
+  // road crosses the lane edge within its reach (1.4 m/s x 2 s), turning 51 deg away does not;
+  // both score the same otherwise, so their ratio is the crossing penalty.
+  const Scene scene = WalkerBesideTheEgoLane(0.0);
   const Problem pb = BuildProblem(scene, Params{});
   const int towards = 1, away = 6;  // headings +51 and -51 deg
   EXPECT_NEAR(PathMass(pb, 0, [&](int l) { return l == away; }) /
@@ -200,16 +208,7 @@ TEST(Problem, APedestrianThatStaysOnTheFootwayIsExpectedToStayOffTheRoad) {
   // crosses the lane edge within its reach (1.4 m/s x 2 s), turning 51 deg right (-6 deg)
   // does not. Counted against the straight-on heading, turning away is the manoeuvre; for a
   // walker that SUMO keeps on the footway, stepping onto the road is.
-  Scene scene = bench::PaperSceneS1();
-  scene.vehicles.clear();
-  scene.ego.lanes.right.reset();
-  Pedestrian walker;
-  walker.id = "walker";
-  walker.state.x_m = 20.0;
-  walker.state.y_m = -2.75;
-  walker.state.yaw_rad = 0.25 * core::kPi;
-  walker.state.speed_mps = 1.4;
-  scene.pedestrians = {walker};
+  Scene scene = WalkerBesideTheEgoLane(0.25 * core::kPi);
   const int straight_on = 0, away = 6;
   auto ratio = [&](const Problem& pb) {
     return PathMass(pb, 0, [&](int l) { return l == straight_on; }) /
