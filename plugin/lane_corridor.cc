@@ -36,6 +36,7 @@ LaneSampling LaneSamplingFor(const Params& params) {
   LaneSampling s;
   s.turn_lane_frame = params.turn_lane_frame && params.road_model;
   s.turn_lane_frame_min_rad = params.turn_lane_frame_min_rad;
+  s.straight_before_turn = params.straight_before_turn && params.road_model;
   return s;
 }
 
@@ -58,11 +59,29 @@ double SampledReach(const LaneCorridor& c, double reach_m, double yaw, bool turn
   return reach_m;
 }
 
+double StraightBeforeTurn(const LaneCorridor& c, double reach_m) {
+  constexpr double kStep = 0.5;  // m
+  double start_heading = 0.0, end_heading = 0.0;
+  PointAlong(c.centre, c.position_m, &start_heading);
+  PointAlong(c.centre, c.position_m + reach_m, &end_heading);
+  if (std::fabs(core::WrapAngle(end_heading - start_heading)) < kStraightThenTurnMinRad) return 0.0;
+  double straight = 0.0;
+  for (double d = kStep; d <= reach_m; d += kStep) {
+    double heading = 0.0;
+    PointAlong(c.centre, c.position_m + d, &heading);
+    if (std::fabs(core::WrapAngle(heading - start_heading)) > kStraightToleranceRad) break;
+    straight = d;
+  }
+  return straight >= kMinStraightM && straight <= reach_m - kMinTurnM ? straight : 0.0;
+}
+
 LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const core::Pose2& X_WV,
                       const LaneSampling& sampling) {
   if (c.centre.size() < 2 || !(reach_m > 0.0)) return LaneSet{};
   reach_m = SampledReach(c, reach_m, X_WV.yaw, sampling.turn_lane_frame);
-  const double s[3] = {c.position_m, c.position_m + 0.5 * reach_m, c.position_m + reach_m};
+  const double straight = sampling.straight_before_turn ? StraightBeforeTurn(c, reach_m) : 0.0;
+  const double middle = straight > 0.0 ? straight : 0.5 * reach_m;
+  const double s[3] = {c.position_m, c.position_m + middle, c.position_m + reach_m};
   // Each divider is the centre line shifted left by `offset` (negative: right).
   auto divider = [&](double offset) {
     LaneDivider d;
@@ -81,6 +100,9 @@ LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const core::Pose2& 
     set.left = Lane{divider(half + c.left->width_m), divider(half), c.left->counter_traffic};
   if (c.right)
     set.right = Lane{divider(-half), divider(-half - c.right->width_m), c.right->counter_traffic};
+  for (std::optional<Lane>* lane : {&set.own, &set.left, &set.right}) {
+    if (*lane) (*lane)->straight_to_middle = straight > 0.0;
+  }
   // The estimator needs every lane's samples to run forward in the vehicle's frame with the
   // left divider left of the right one. Offsetting a tight turn's centre line can break that
   // (the dividers cross): such a neighbour is left out; such an own lane makes the whole set

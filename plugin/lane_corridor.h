@@ -48,7 +48,20 @@ struct LaneSampling {
   /** The estimator's Params::turn_lane_frame_min_rad, so that the samples are checked in the
    *  frame it will fit them in. */
   double turn_lane_frame_min_rad{0.35};
+  /** Params::straight_before_turn: where the centre line runs straight (within
+   *  kStraightToleranceRad of its heading at the vehicle) for at least kMinStraightM and then
+   *  turns by at least kStraightThenTurnMinRad within the reach, the middle samples go where
+   *  the straight ends and every lane is marked Lane::straight_to_middle. */
+  bool straight_before_turn{true};
 };
+constexpr double kStraightToleranceRad = 0.05235987755982989;   // 3 degrees
+constexpr double kStraightThenTurnMinRad = 0.2617993877991494;  // 15 degrees
+/** A straight of 15 m or more: shorter straights lead into junction turns that the vehicle
+ *  may already be steering into, where the parabola through three points of the whole turn
+ *  follows it better (in the city run, 5 m straights fitted this way took turning cars wide). */
+constexpr double kMinStraightM = 15.0;
+/** ... and the turn keeps at least this much of the reach beyond the straight. */
+constexpr double kMinTurnM = 5.0;
 constexpr double kPaperFrameMaxTurnRad = 1.0471975511965976;  // 60 degrees
 constexpr double kTurnEndToleranceRad = 0.05235987755982989;  // 3 degrees
 /** In the turn frame, the samples still stop where the centre line has turned this far
@@ -65,8 +78,16 @@ LaneSampling LaneSamplingFor(const Params& params);
 double SampledReach(const LaneCorridor& corridor, double reach_m, double yaw,
                     bool turn_lane_frame = false);
 
+/** Where the corridor's centre line stops running straight: the distance ahead of position
+ *  at which it has turned more than kStraightToleranceRad from its heading at position, when
+ *  that is at least kMinStraightM and at most reach - kMinTurnM and the line has turned at
+ *  least kStraightThenTurnMinRad by the reach; otherwise 0 (no straight road before a turn). */
+double StraightBeforeTurn(const LaneCorridor& corridor, double reach_m);
+
 /** Samples the corridor at s = position, position + reach/2, position + reach (reach as
- *  SampledReach shortens it) and returns the lanes in the vehicle's local frame X_WV. Returns
+ *  SampledReach shortens it; the middle where StraightBeforeTurn says the straight ends, as
+ *  LaneSampling::straight_before_turn asks) and returns the lanes in the vehicle's local frame
+ *  X_WV. Returns
  *  an empty LaneSet (the estimator then uses a virtual lane) when the corridor has fewer than
  *  2 points or its samples do not run forward along the frame the estimator fits them in
  *  (e.g. the vehicle stands across its lane). */

@@ -57,6 +57,10 @@ struct HypothesisSet {
   /** The lateral controller adds the curvature of the path it tracks (feed-forward,
    *  Params::steer_curvature_feedforward): set for a vehicle already turning along its lane. */
   bool steer_feedforward{false};
+  /** The vehicle leaves the scene once its centre has travelled this far along its way
+   *  (Params::route_end_leaves): its poses from then on lie far from everything (kGoneX), so
+   *  they collide with nothing. +inf: it stays. */
+  double leave_distance{HUGE_VAL};
 
   // Lateral: section[k][l] is the path section through lateral sample l (right to left) that
   // is tracked until instant_time[k].

@@ -10,8 +10,9 @@ namespace criticality::core {
 
 /** y(x) = a x^2 + b x + c in an object's local frame, or, for a lane that turns far across
  *  the object's heading (Params::turn_lane_frame), in that frame rotated by `rot` (x along the
- *  lane's chord), continued along its tangent beyond x_end. With the defaults (rot = 0,
- *  x_end = +inf) it is the paper's parabola in the local frame. */
+ *  lane's chord), continued along its tangent beyond x_end and, for a straight road before a
+ *  turn (Lane::straight_to_middle), along its tangent before x_start. With the defaults
+ *  (rot = 0, x_start = -inf, x_end = +inf) it is the paper's parabola in the local frame. */
 struct Parabola {
   double a{0.0};
   double b{0.0};
@@ -22,15 +23,23 @@ struct Parabola {
   /** Beyond this x (in the parabola's frame) the curve continues straight along its tangent
    *  there: a lane sampled to the end of a turn leaves it straight instead of turning on. */
   double x_end{HUGE_VAL};
+  /** Before this x (in the parabola's frame) the curve is the straight line tangent to it
+   *  there: the straight road before a turn. */
+  double x_start{-HUGE_VAL};
+  /** True where the curve follows the parabola (x_start <= x <= x_end), not a straight end. */
+  CRIT_HD bool Curved(double x) const { return x >= x_start && x <= x_end; }
   /** y and dy/dx at x, both in the parabola's frame. */
   CRIT_HD double Eval(double x) const {
-    if (x > x_end) return (a * x_end + b) * x_end + c + (2.0 * a * x_end + b) * (x - x_end);
-    return (a * x + b) * x + c;
+    const double xc = x < x_start ? x_start : (x > x_end ? x_end : x);
+    return (a * xc + b) * xc + c + (2.0 * a * xc + b) * (x - xc);
   }
-  CRIT_HD double Slope(double x) const { return 2.0 * a * (x < x_end ? x : x_end) + b; }
-  /** Unsigned curvature at x (parabola's frame): 2|a| / (1 + slope^2)^1.5; 0 beyond x_end. */
+  CRIT_HD double Slope(double x) const {
+    return 2.0 * a * (x < x_start ? x_start : (x < x_end ? x : x_end)) + b;
+  }
+  /** Unsigned curvature at x (parabola's frame): 2|a| / (1 + slope^2)^1.5; 0 on the straight
+   *  ends. */
   CRIT_HD double Curvature(double x) const {
-    if (x > x_end) return 0.0;
+    if (!Curved(x)) return 0.0;
     const double m = Slope(x);
     const double q = 1.0 + m * m;
     return 2.0 * std::fabs(a) / (q * std::sqrt(q));
@@ -65,7 +74,7 @@ struct Parabola {
 
 /** Pointwise blend (1 - f) * p + f * q: the curve "parallel" to two dividers that passes at
  *  fraction f across the lane they delimit (used for path sections, paper Sec. IV-B-2b). Both
- *  must be written in the same frame; the blend keeps p's frame and x_end. */
+ *  must be written in the same frame; the blend keeps p's frame, x_start and x_end. */
 CRIT_HD Parabola Blend(const Parabola& p, const Parabola& q, double f) {
   Parabola out = p;
   out.a = (1.0 - f) * p.a + f * q.a;
@@ -133,6 +142,35 @@ CRIT_HD bool FitParabola(const double x[3], const double y[3], Parabola* out) {
   out->a = m[0][3];
   out->b = m[1][3];
   out->c = m[2][3];
+  return true;
+}
+
+/** The straight road before a turn (Lane::straight_to_middle): y = c + b x up to x_start,
+ *  continued beyond it by the parabola tangent to that line there,
+ *  y = c + b x + k (x - x_start)^2, through the three points. The dividers of one lane share
+ *  x_start (the mean of their middle points' x), so that blends between them stay straight
+ *  before it too. @returns false (leaving *out untouched) unless x[0] < x_start < x[2] and
+ *  x[0] < x[1] < x[2]. */
+CRIT_HD bool FitStraightThenParabola(const double x[3], const double y[3], double x_start,
+                                     Parabola* out) {
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) return false;
+  }
+  if (!std::isfinite(x_start) || !(x[0] < x[1] && x[1] < x[2]) ||
+      !(x[0] < x_start && x_start < x[2]))
+    return false;
+  // With d_i = max(0, x_i - x_start): b (x_i - x_0) + k d_i^2 = y_i - y_0 for i = 1, 2.
+  const double d1 = x[1] > x_start ? x[1] - x_start : 0.0, d2 = x[2] - x_start;
+  const double det = (x[1] - x[0]) * d2 * d2 - (x[2] - x[0]) * d1 * d1;
+  const double span = x[2] - x[0];
+  if (!(std::fabs(det) > kLaneFitPivotTolerance * span * span * span)) return false;
+  const double k = ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])) / det;
+  const double b = (y[1] - y[0] - k * d1 * d1) / (x[1] - x[0]);
+  const double c = y[0] - b * x[0];
+  out->a = k;
+  out->b = b - 2.0 * k * x_start;
+  out->c = c + k * x_start * x_start;
+  out->x_start = x_start;
   return true;
 }
 

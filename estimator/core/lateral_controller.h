@@ -64,7 +64,7 @@ CRIT_HD double SteeringCommand(const ControllerLimits& c, const Parabola& sectio
   const double e_psi = WrapAngle(std::atan(slope) + section.rot - s.yaw);
   double cmd = PaperSteeringLawDeg(s.v, d_path, e_psi) * (kPi / 180.0);
   if (wheelbase > 0.0) {  // feed-forward of the section's curvature (HypothesisSet)
-    const double kappa = 2.0 * (xp < section.x_end ? section.a : 0.0) /
+    const double kappa = 2.0 * (section.Curved(xp) ? section.a : 0.0) /
                          ((1.0 + slope * slope) * std::sqrt(1.0 + slope * slope));
     cmd += std::atan(wheelbase * kappa);
   }

@@ -50,7 +50,16 @@ struct SimulationState {
    *  the section it was set for (-1: before the lateral latency; -2: none yet). */
   double held_steer{0.0};
   int held_section{-2};
+  double travelled{0.0};  ///< distance its centre has covered (for HypothesisSet::leave_distance)
 };
+
+/** Where the poses of a vehicle that has left the scene go (HypothesisSet::leave_distance):
+ *  the ego's and the others' on opposite sides, a million kilometres from any scene, so that a
+ *  pose that has left overlaps nothing, not even another that has left. */
+constexpr double kGoneX = 1e9;
+CRIT_HD double GoneX(const HypothesisSet& h) {
+  return h.model == MotionModelKind::kTwoTrack ? kGoneX : -kGoneX;
+}
 
 CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h,
                                                const SimulationConfig& cfg) {
@@ -139,10 +148,16 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
     d.v_dot = NonReversingAccel(s.v, d.v_dot, tau);
     EulerStep(d, tau, &s, cb, sb, cy, sy);
     if (s.v < 0.0) s.v = 0.0;  // rounding guard
+    st->travelled += s.v * tau;
     // Local frame -> scene frame (LocalToWorld with the rotation hoisted out of the loop).
     const size_t at = static_cast<size_t>(n) * stride;
-    x[at] = h.X_WL.x + c0 * s.x - s0 * s.y;
-    y[at] = h.X_WL.y + s0 * s.x + c0 * s.y;
+    if (st->travelled > h.leave_distance) {  // it has left the scene
+      x[at] = GoneX(h);
+      y[at] = 0.0;
+    } else {
+      x[at] = h.X_WL.x + c0 * s.x - s0 * s.y;
+      y[at] = h.X_WL.y + s0 * s.x + c0 * s.y;
+    }
     yaw[at] = h.X_WL.yaw + s.yaw;
     if (trace) {
       trace->state[n] = s;

@@ -105,7 +105,7 @@ double LaneFrameAngle(const LaneSet& lanes, const Params& params) {
 
 std::string LaneProblem(const Lane& lane, double frame_rad) {
   try {
-    internal::FitLanes(LaneSet{lane, std::nullopt, std::nullopt}, "lane", frame_rad);
+    internal::FitLanes(LaneSet{lane, std::nullopt, std::nullopt}, "lane", frame_rad, false, true);
   } catch (const InputError& e) {
     return e.what();
   }

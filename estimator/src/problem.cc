@@ -84,6 +84,11 @@ void SetPose(const ObjectState& s, double length, double width, core::Hypothesis
   h->half_width = 0.5 * width;
 }
 
+// Params::route_end_leaves: a vehicle whose route ends ahead leaves the scene there.
+void SetRouteEnd(const ObjectState& s, const Params& p, core::HypothesisSet* h) {
+  if (p.route_end_leaves && s.route_end_m) h->leave_distance = *s.route_end_m;
+}
+
 // Params::curve_speed_reference: the constant acceleration that brings a vehicle at speed v,
 // by each of 20 points of its lane centre within v x horizon, to the speed at which that
 // point's curvature asks curve_lateral_accel_mps2; the lowest of them, at least
@@ -511,6 +516,7 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     h.vehicle =
         VehicleModelParams(scene.ego.length_m, scene.ego.width_m, scene.ego.height_m, params);
     SetPose(scene.ego.state, scene.ego.length_m, scene.ego.width_m, &h);
+    SetRouteEnd(scene.ego.state, params, &h);
     h.seam_speed = core::SeamSpeed(h.vehicle, params.step_s, params.euler_stability_factor);
     const double a_ref = ReferenceAccel(scene.ego.state, ego_fitted.own->Centre(), params);
     const std::vector<ProfileScore> profiles =
@@ -535,6 +541,7 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     h.model = core::MotionModelKind::kOneTrack;
     h.vehicle = VehicleModelParams(v.length_m, v.width_m, v.height_m, params);
     SetPose(v.state, v.length_m, v.width_m, &h);
+    SetRouteEnd(v.state, params, &h);
     h.seam_speed = core::SeamSpeed(h.vehicle, params.step_s, params.euler_stability_factor);
     ObjectResult info;
     info.id = v.id;

@@ -1,6 +1,7 @@
 #include "src/risk_assessment.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -82,6 +83,10 @@ void FinishDecisionOutputs(const Problem& pb, const Params& params,
   const int steps = pb.Steps();
   std::vector<double> x(steps), y(steps), yaw(steps), steer(steps);
   std::vector<core::MotionState> state(steps);
+  // The manoeuvre as driven: an ego that leaves the scene at the end of its route (Params::
+  // route_end_leaves) still has a place on the road to report.
+  core::HypothesisSet driven = pb.ego;
+  driven.leave_distance = HUGE_VAL;
   for (size_t r = 0; r < keep; ++r) {
     const int i = order[r];
     EscapeRoute e;
@@ -97,7 +102,7 @@ void FinishDecisionOutputs(const Problem& pb, const Params& params,
     e.probability = pb.ego_probability[i];
     e.collision_probability = col[i];
     core::StepTrace trace{state.data(), steer.data()};
-    core::SimulateHypothesis(pb.ego, pb.sim, e.profile, i % pb.ego.n_paths, x.data(), y.data(),
+    core::SimulateHypothesis(driven, pb.sim, e.profile, i % pb.ego.n_paths, x.data(), y.data(),
                              yaw.data(), 1, &trace);
     for (int n = 0; n < steps; ++n) {
       const core::MotionState& s = state[n];

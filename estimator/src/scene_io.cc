@@ -22,8 +22,9 @@ void WriteHeight(std::ostream& out, const std::optional<double>& h) {
     out << " -";
 }
 
-void WriteExpected(std::ostream& out, const ObjectState& s) {
+void WriteStateLines(std::ostream& out, const ObjectState& s) {
   if (s.expected_accel_mps2) out << "expected-accel " << *s.expected_accel_mps2 << '\n';
+  if (s.route_end_m) out << "route-end " << *s.route_end_m << '\n';
 }
 
 void WriteLanes(std::ostream& out, const LaneSet& lanes) {
@@ -33,6 +34,7 @@ void WriteLanes(std::ostream& out, const LaneSet& lanes) {
     for (const LaneDivider* d : {&lane->left, &lane->right}) {
       for (const Point2& p : d->points) out << ' ' << p.x << ' ' << p.y;
     }
+    if (lane->straight_to_middle) out << " straight-to-middle";
     out << '\n';
   };
   one("own", lanes.own);
@@ -101,7 +103,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
   out << ' ' << scene.ego.length_m << ' ' << scene.ego.width_m;
   WriteHeight(out, scene.ego.height_m);
   out << '\n';
-  WriteExpected(out, scene.ego.state);
+  WriteStateLines(out, scene.ego.state);
   WriteLanes(out, scene.ego.lanes);
   for (const Vehicle& v : scene.vehicles) {
     out << "vehicle " << v.id;
@@ -109,7 +111,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
     out << ' ' << v.length_m << ' ' << v.width_m;
     WriteHeight(out, v.height_m);
     out << ' ' << (v.lanes ? 1 : 0) << '\n';
-    WriteExpected(out, v.state);
+    WriteStateLines(out, v.state);
     if (v.lanes) WriteLanes(out, *v.lanes);
     if (v.stop_line) {
       out << "stop " << StopReasonName(v.stop_line->reason) << ' ' << v.stop_line->distance_m
@@ -127,7 +129,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
 Scene ReadScene(std::istream& in, const std::string& source) {
   Scene scene;
   LaneSet* lanes = nullptr;
-  ObjectState* state = nullptr;  // of the last ego or vehicle, for 'expected-accel'
+  ObjectState* state = nullptr;  // of the last ego or vehicle, for 'expected-accel', 'route-end'
   Vehicle* vehicle = nullptr;    // the last vehicle read, for its 'stop' line
   Pedestrian* pedestrian = nullptr;  // the last pedestrian read, for its 'footway' line
   bool header = false, ego = false;
@@ -187,6 +189,9 @@ Scene ReadScene(std::istream& in, const std::string& source) {
     } else if (kind == "footway") {
       if (!pedestrian) throw InputError(r.where + ": 'footway' must follow a pedestrian");
       pedestrian->stays_on_footway = true;
+    } else if (kind == "route-end") {
+      if (!state) throw InputError(r.where + ": 'route-end' must follow an ego or a vehicle");
+      state->route_end_m = r.Num();
     } else if (kind == "expected-accel") {
       if (!state) throw InputError(r.where + ": 'expected-accel' must follow an ego or a vehicle");
       state->expected_accel_mps2 = r.Num();
@@ -217,6 +222,12 @@ Scene ReadScene(std::istream& in, const std::string& source) {
           p.y = r.Num();
         }
       }
+      if (r.next < r.words.size()) {
+        const std::string shape = r.Word();
+        if (shape != "straight-to-middle")
+          throw InputError(r.where + ": lane shape '" + shape + "' must be straight-to-middle");
+        lane.straight_to_middle = true;
+      }
       if (which == "own")
         lanes->own = lane;
       else if (which == "left")
@@ -227,7 +238,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
         throw InputError(r.where + ": lane '" + which + "' must be own, left or right");
     } else {
       throw InputError(r.where + ": unknown record '" + kind +
-                       "' (ego, vehicle, pedestrian, lane, stop, footway, expected-accel)");
+                       "' (ego, vehicle, pedestrian, lane, stop, footway, expected-accel, route-end)");
     }
     if (r.next != r.words.size()) throw InputError(r.where + ": too many values");
   }

@@ -12,8 +12,15 @@ namespace {
 constexpr double kMinPointSpacing = 0.01;  // m, along x in the local frame
 constexpr double kMaxLaneFrameRad = 1.3089969389957472;  // 75 degrees: the chord of a 150 degree turn
 
+// x of a divider's middle point in the frame turned by frame_rad.
+double MiddleX(const LaneDivider& d, double frame_rad) {
+  return std::cos(frame_rad) * d.points[1].x + std::sin(frame_rad) * d.points[1].y;
+}
+
+// straight_until: NaN for the paper's parabola, else the x (fit frame) where the straight road
+// before a turn ends (FitStraightThenParabola).
 core::Parabola FitDivider(const LaneDivider& d, const std::string& where, double frame_rad,
-                          bool straight_beyond) {
+                          bool straight_beyond, double straight_until) {
   double x[3], y[3];
   const double c = std::cos(frame_rad), s = std::sin(frame_rad);
   for (int i = 0; i < 3; ++i) {
@@ -44,7 +51,14 @@ core::Parabola FitDivider(const LaneDivider& d, const std::string& where, double
     }
   }
   core::Parabola p;
-  if (!core::FitParabola(x, y, &p)) {
+  if (!std::isnan(straight_until)) {
+    if (!core::FitStraightThenParabola(x, y, straight_until, &p)) {
+      std::ostringstream msg;
+      msg << where << ": straight to the middle point needs increasing forward distances, got x = "
+          << x[0] << ", " << x[1] << ", " << x[2] << " m";
+      throw InputError(msg.str());
+    }
+  } else if (!core::FitParabola(x, y, &p)) {
     throw InputError(where + ": the three points do not define a lane divider y(x)");
   }
   if (frame_rad != 0.0) p.SetFrame(frame_rad);
@@ -53,11 +67,17 @@ core::Parabola FitDivider(const LaneDivider& d, const std::string& where, double
 }
 
 std::optional<FittedLane> FitLane(const std::optional<Lane>& lane, const std::string& where,
-                                  double frame_rad, bool straight_beyond) {
+                                  double frame_rad, bool straight_beyond,
+                                  bool straight_to_middle) {
   if (!lane) return std::nullopt;
   FittedLane f;
-  f.left = FitDivider(lane->left, where + ".left", frame_rad, straight_beyond);
-  f.right = FitDivider(lane->right, where + ".right", frame_rad, straight_beyond);
+  // Both dividers turn from the same x (the mean of their middle points').
+  const double straight_until =
+      straight_to_middle && lane->straight_to_middle
+          ? 0.5 * (MiddleX(lane->left, frame_rad) + MiddleX(lane->right, frame_rad))
+          : std::nan("");
+  f.left = FitDivider(lane->left, where + ".left", frame_rad, straight_beyond, straight_until);
+  f.right = FitDivider(lane->right, where + ".right", frame_rad, straight_beyond, straight_until);
   f.counter_traffic = lane->counter_traffic;
   // Both dividers continue straight from the same distance along the turn frame.
   f.left.x_end = f.right.x_end = 0.5 * (f.left.x_end + f.right.x_end);
@@ -96,8 +116,10 @@ std::optional<Lane> LaneInFrame(const Lane& lane, const core::Pose2& X_EV, bool 
   out.left = ToFrame(reversed ? lane.right : lane.left, X_EV);
   out.right = ToFrame(reversed ? lane.left : lane.right, X_EV);
   out.counter_traffic = counter;
+  out.straight_to_middle = lane.straight_to_middle;
   try {
-    const FittedLanes probe = FitLanes(LaneSet{out, std::nullopt, std::nullopt}, "lane");
+    const FittedLanes probe =
+        FitLanes(LaneSet{out, std::nullopt, std::nullopt}, "lane", 0.0, false, true);
     (void)probe;
   } catch (const InputError&) {
     return std::nullopt;
@@ -148,16 +170,17 @@ double LaneFrameAngle(const LaneSet& lanes, const Params& params) {
 }
 
 FittedLanes FitLanes(const LaneSet& lanes, const std::string& where, double frame_rad,
-                     bool straight_beyond) {
+                     bool straight_beyond, bool straight_to_middle) {
   FittedLanes f;
-  f.own = FitLane(lanes.own, where + ".own", frame_rad, straight_beyond);
-  f.left = FitLane(lanes.left, where + ".left", frame_rad, straight_beyond);
-  f.right = FitLane(lanes.right, where + ".right", frame_rad, straight_beyond);
+  f.own = FitLane(lanes.own, where + ".own", frame_rad, straight_beyond, straight_to_middle);
+  f.left = FitLane(lanes.left, where + ".left", frame_rad, straight_beyond, straight_to_middle);
+  f.right = FitLane(lanes.right, where + ".right", frame_rad, straight_beyond, straight_to_middle);
   return f;
 }
 
 FittedLanes FitLanes(const LaneSet& lanes, const std::string& where, const Params& params) {
-  return FitLanes(lanes, where, LaneFrameAngle(lanes, params), params.turn_lane_frame);
+  return FitLanes(lanes, where, LaneFrameAngle(lanes, params), params.turn_lane_frame,
+                  params.straight_before_turn);
 }
 
 LaneSet CompleteEgoLanes(const Ego& ego, const Params& params) {

@@ -51,14 +51,15 @@ double LaneFrameAngle(const LaneSet& lanes, const Params& params);
 
 /** Fits every divider in the frame turned by frame_rad from the observer's (LaneFrameAngle),
  *  with straight_beyond each lane continuing straight along its tangent beyond its farthest
- *  sample (instead of the parabola curving on); throws InputError naming `where` (e.g.
- *  "scene.ego.lanes.left") when a divider's points do not define y(x) there or the lane has no
- *  positive width at the observer. */
+ *  sample (instead of the parabola curving on), with straight_to_middle a lane marked
+ *  Lane::straight_to_middle fitted straight up to its middle sample; throws InputError naming
+ *  `where` (e.g. "scene.ego.lanes.left") when a divider's points do not define y(x) there or
+ *  the lane has no positive width at the observer. */
 FittedLanes FitLanes(const LaneSet& lanes, const std::string& where, double frame_rad = 0.0,
-                     bool straight_beyond = false);
+                     bool straight_beyond = false, bool straight_to_middle = false);
 
-/** The same in the frame and with the continuation the parameters ask for
- *  (Params::turn_lane_frame). */
+/** The same in the frame and with the continuation and the straight road the parameters ask
+ *  for (Params::turn_lane_frame, Params::straight_before_turn). */
 FittedLanes FitLanes(const LaneSet& lanes, const std::string& where, const Params& params);
 
 /** The ego's lanes, with a virtual own lane when the scene gives none. */

@@ -41,6 +41,12 @@ void ValidateState(const std::string& where, const ObjectState& s) {
   if (s.speed_mps > 150.0) Fail(where + ".speed_mps", s.speed_mps, "must be <= 150 m/s");
   RequireFinite(where + ".accel_mps2", s.accel_mps2);
   if (s.expected_accel_mps2) RequireFinite(where + ".expected_accel_mps2", *s.expected_accel_mps2);
+  if (s.route_end_m && !(*s.route_end_m >= 0.0 && std::isfinite(*s.route_end_m))) {
+    std::ostringstream msg;
+    msg << where << ".route_end_m = " << *s.route_end_m
+        << ": must be a finite distance >= 0 (m), or unset when the vehicle stays";
+    throw InputError(msg.str());
+  }
   RequireFinite(where + ".yaw_rate_radps", s.yaw_rate_radps);
   RequireFinite(where + ".sideslip_rad", s.sideslip_rad);
   if (std::fabs(s.sideslip_rad) > 1.0)
@@ -188,6 +194,8 @@ Params ParamsPreset(const std::string& name) {
     p.steer_curvature_feedforward = false;
     p.footway_pedestrians = false;
     p.curve_speed_reference = false;
+    p.straight_before_turn = false;
+    p.route_end_leaves = false;
     return p;
   }
   std::string names;

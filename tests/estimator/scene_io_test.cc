@@ -61,6 +61,46 @@ TEST(SceneIo, FootwayFlagsRoundTrip) {
   EXPECT_FALSE(back.pedestrians[2].stays_on_footway);
 }
 
+TEST(SceneIo, RouteEndsRoundTrip) {
+  Scene scene = testing::RandomScene(6, 0, 0, true);
+  scene.vehicles.resize(2);
+  scene.vehicles[0].id = "a";
+  scene.vehicles[1].id = "b";
+  scene.vehicles[1].state.x_m = 10.0;
+  scene.ego.state.route_end_m = 12.5;
+  scene.vehicles[1].state.route_end_m = 0.0;
+  std::stringstream file;
+  WriteScene(file, scene);
+  const Scene back = ReadScene(file);
+  EXPECT_EQ(back.ego.state.route_end_m, std::optional<double>(12.5));
+  EXPECT_FALSE(back.vehicles[0].state.route_end_m.has_value());
+  EXPECT_EQ(back.vehicles[1].state.route_end_m, std::optional<double>(0.0));
+  std::istringstream bad("criticality-scene 1\npedestrian p 0 0 0 1 0 0 0 .5 .5\nroute-end 3\n");
+  EXPECT_THROW(ReadScene(bad), InputError);
+}
+
+TEST(SceneIo, StraightToMiddleRoundTrips) {
+  Scene scene = testing::RandomScene(6, 1, 0, true);
+  scene.ego.lanes = bench::StraightThreeLanes();
+  scene.ego.lanes.own->straight_to_middle = true;
+  std::stringstream file;
+  WriteScene(file, scene);
+  const Scene back = ReadScene(file);
+  ASSERT_TRUE(back.ego.lanes.own && back.ego.lanes.left);
+  EXPECT_TRUE(back.ego.lanes.own->straight_to_middle);
+  EXPECT_FALSE(back.ego.lanes.left->straight_to_middle);
+  std::istringstream bad(
+      "criticality-scene 1\nego e 0 0 0 1 0 0 0 4.5 1.8 -\n"
+      "lane own 0 0 1 10 1 20 1 0 -1 10 -1 20 -1 curvy\n");
+  try {
+    ReadScene(bad, "f.scene");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("f.scene:3: lane shape 'curvy'"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(SceneIo, BadFilesNameTheLine) {
   auto error = [](const std::string& text) {
     std::istringstream in(text);

@@ -7,6 +7,7 @@
 
 #include "core/geometry.h"
 #include "criticality/estimator.h"
+#include "src/street_data.h"
 
 namespace criticality::plugin {
 namespace {
@@ -144,6 +145,74 @@ TEST(LaneCorridor, DividersThatCrossInATightTurnAreLeftOut) {
   const LaneSet straight = SampleLaneSet(c, 14.0, core::Pose2{0.0, 0.0, 0.0});
   ASSERT_TRUE(straight.right);
   EXPECT_NEAR(straight.right->right.points[2].y, -4.8, 1e-9);
+}
+
+// A road straight for 30 m that then turns left through 90 degrees (radius 10 m).
+LaneCorridor StraightThenLeftTurn() {
+  LaneCorridor c;
+  c.centre = {{0, 0}, {30, 0}};
+  for (int k = 1; k <= 18; ++k) {
+    const double a = core::kPi / 2 * k / 18.0;
+    c.centre.push_back(Point2{30 + 10 * std::sin(a), 10 - 10 * std::cos(a)});
+  }
+  c.centre.push_back(Point2{40, 60});
+  c.width_m = 3.2;
+  c.right = NeighbourLane{3.2, false};
+  return c;
+}
+
+TEST(LaneCorridor, AStraightBeforeATurnIsSampledToWhereTheTurnStarts) {
+  const LaneCorridor c = StraightThenLeftTurn();
+  EXPECT_NEAR(StraightBeforeTurn(c, 45.0), 30.5, 0.5);
+  const LaneSet set = SampleLaneSet(c, 45.0, core::Pose2{0.0, 0.0, 0.0});
+  ASSERT_TRUE(set.own && set.right);
+  EXPECT_TRUE(set.own->straight_to_middle);
+  EXPECT_TRUE(set.right->straight_to_middle);
+  // Where the straight ends: the centre line's first 5 degree segment of the arc still counts
+  // (its chord turns 2.5 degrees).
+  EXPECT_NEAR(set.own->left.points[1].x, 30.5, 0.5);
+  EXPECT_NEAR(set.own->left.points[1].y, 1.6, 0.05);
+  // As the estimator fits it, the lane's centre stays on the straight up to the turn and then
+  // turns left; sampled at 0, reach/2 and reach (paper-literal sampling), the parabola bends
+  // more than a metre to the right on the straight first.
+  const core::Parabola centre = internal::FitLanes(set, "lanes", Params{}).own->Centre();
+  for (double x = 0.0; x <= 30.0; x += 2.5) EXPECT_NEAR(centre.Eval(x), 0.0, 0.05) << x;
+  EXPECT_GT(centre.Eval(38.0), 5.0);
+  LaneSampling paper;
+  paper.straight_before_turn = false;
+  const LaneSet halves = SampleLaneSet(c, 45.0, core::Pose2{0.0, 0.0, 0.0}, paper);
+  ASSERT_TRUE(halves.own);
+  EXPECT_FALSE(halves.own->straight_to_middle);
+  EXPECT_NEAR(halves.own->left.points[1].x, 22.5, 1e-9);
+  const core::Parabola dipping = internal::FitLanes(halves, "lanes", Params{}).own->Centre();
+  double lowest = 0.0;
+  for (double x = 0.0; x <= 30.0; x += 0.5) lowest = std::fmin(lowest, dipping.Eval(x));
+  EXPECT_LT(lowest, -1.0);
+  EXPECT_FALSE(LaneSamplingFor(ParamsPreset("paper-literal")).straight_before_turn);
+  EXPECT_TRUE(LaneSamplingFor(Params{}).straight_before_turn);
+}
+
+TEST(LaneCorridor, OnlyAStraightFollowedByATurnIsSampledToItsEnd) {
+  // Straight all the way, turning from the start (a constant curve), or a straight that ends
+  // too close to the reach: the paper's sampling.
+  LaneCorridor straight;
+  straight.centre = {{0, 0}, {100, 0}};
+  EXPECT_EQ(StraightBeforeTurn(straight, 45.0), 0.0);
+  EXPECT_FALSE(SampleLaneSet(straight, 45.0, core::Pose2{}).own->straight_to_middle);
+  LaneCorridor curve;
+  for (int k = 0; k <= 60; ++k) {
+    const double a = 1.2 * k / 60.0;  // radius 40 m, turning from the start
+    curve.centre.push_back(Point2{40 * std::sin(a), 40 - 40 * std::cos(a)});
+  }
+  EXPECT_EQ(StraightBeforeTurn(curve, 45.0), 0.0);
+  const LaneCorridor c = StraightThenLeftTurn();
+  EXPECT_EQ(StraightBeforeTurn(c, 33.0), 0.0);  // 3 m of turn within the reach
+  EXPECT_EQ(StraightBeforeTurn(c, 30.0), 0.0);  // no turn within the reach
+  LaneCorridor later = c;
+  later.position_m = 20.0;  // 10 m of straight left: a junction turn, sampled as the paper does
+  EXPECT_EQ(StraightBeforeTurn(later, 30.0), 0.0);
+  later.position_m = 12.0;  // 18 m of straight left
+  EXPECT_NEAR(StraightBeforeTurn(later, 30.0), 18.0, 0.5);
 }
 
 TEST(LaneCorridor, VehicleAcrossItsLaneGetsNoLanes) {

@@ -28,8 +28,8 @@ std::string BackendName(Backend backend);
 bool CudaUsable(std::string* why);
 
 /** Empty when the estimator can use `lane` as given (its dividers define y(x) in the observer's
- *  frame turned by frame_rad, see LaneFrameAngle, and the lane has a positive width at the
- *  observer); otherwise why not. Lets a caller that builds lanes from a map (the SUMO driver)
+ *  frame turned by frame_rad, see LaneFrameAngle, as Lane::straight_to_middle asks when set,
+ *  and the lane has a positive width at the observer); otherwise why not. Lets a caller that builds lanes from a map (the SUMO driver)
  *  leave out a lane instead of failing the estimate. */
 std::string LaneProblem(const Lane& lane, double frame_rad = 0.0);
 

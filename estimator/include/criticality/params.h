@@ -127,6 +127,21 @@ struct Params {
   /** See turn_lane_frame: 20 degrees (a chord that far off belongs to a turn of about 40
    *  degrees; road curves over a sampled reach turn far less). */
   double turn_lane_frame_min_rad{0.35};
+  /** A parabola through three samples of a road that runs straight and then turns (a junction
+   *  ahead) bends away from the turn on the straight first: with the turn 25-45 m ahead it
+   *  swept 1.3 m out of the lane towards the kerb. With true, a lane marked
+   *  Lane::straight_to_middle (the SUMO driver samples its middle point where the turn
+   *  starts) is fitted as the straight line through its first two samples, continued by the
+   *  parabola tangent to it through the third (estimator/ALGORITHM.md "Straight road before a
+   *  turn"); with false the mark is ignored. Project choice; paper-literal: false. */
+  bool straight_before_turn{true};
+  /** A vehicle (or the ego) whose ObjectState::route_end_m is set leaves the scene once it has
+   *  travelled that far: its hypotheses' poses from then on collide with nothing. SUMO removes
+   *  a vehicle at the end of its route at full speed, often just before a junction; carried
+   *  on, its hypotheses crossed the junction into traffic that had the green light
+   *  (estimator/ALGORITHM.md "Vehicles that leave the simulation"). Project choice (SUMO's
+   *  arrivals); paper-literal: false. */
+  bool route_end_leaves{true};
 
   // --- Drivability (DESIGN.md: every hypothesis must be drivable). The paper asks for drivable
   // trajectories but leaves these limits open; ParamsPreset("paper-literal") turns them off. ---

@@ -36,6 +36,11 @@ struct Lane {
   LaneDivider right;  ///< the divider with the smaller y
   /** True when traffic on this lane runs against the observer's direction of travel. */
   bool counter_traffic{false};
+  /** True when the road runs straight from the closest to the middle samples and turns only
+   *  beyond the middle one (the straight road before a junction turn): each divider is then
+   *  fitted as the line through its first two points, continued by the parabola tangent to it
+   *  through the third (Params::straight_before_turn). Needs x0 < x1 < x2 on both dividers. */
+  bool straight_to_middle{false};
 };
 
 /** Up to three lanes around an observer (paper Sec. IV-A): its own, the immediate left and the
@@ -62,6 +67,10 @@ struct ObjectState {
    *  hypothesis' acceleration and the centre of the acceleration scores instead of the current
    *  acceleration (Params::expected_accel_reference). Vehicles and the ego only. */
   std::optional<double> expected_accel_mps2;
+  /** How far ahead along its way the vehicle leaves the scene, when the caller knows: the end
+   *  of its route in a traffic simulation, where SUMO removes it. From there on its hypotheses
+   *  collide with nothing (Params::route_end_leaves). Vehicles and the ego only; >= 0. */
+  std::optional<double> route_end_m;
 };
 
 /** The vehicle whose criticality is estimated. Simulated with the two-track model. */

@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <array>
+#include <cmath>
 #include <random>
 
 #include "criticality/errors.h"
+#include "criticality/params.h"
 #include "src/street_data.h"
 
 namespace criticality::core {
@@ -84,6 +87,102 @@ TEST(LaneFit, NonFiniteInputFails) {
   const double y[3] = {1.0, std::nan(""), 2.0};
   Parabola fit;
   EXPECT_FALSE(FitParabola(x, y, &fit));
+}
+
+// A road straight for 20 m that then turns left: the paper's parabola through the three samples
+// bends right first (1.25 m at 10 m); fitted straight to the middle sample it does not.
+TEST(LaneFit, StraightThenParabolaKeepsTheStraightBeforeTheTurn) {
+  const double x[3] = {0.0, 20.0, 40.0};
+  const double y[3] = {1.6, 1.6, 11.6};
+  Parabola paper;
+  ASSERT_TRUE(FitParabola(x, y, &paper));
+  EXPECT_LT(paper.Eval(10.0), 1.6 - 1.2);  // the dip this fit removes
+  Parabola fit;
+  ASSERT_TRUE(FitStraightThenParabola(x, y, x[1], &fit));
+  EXPECT_EQ(fit.x_start, 20.0);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(fit.Eval(x[i]), y[i], 1e-9);
+  for (double xi = -10.0; xi < 20.0; xi += 2.5) {
+    EXPECT_NEAR(fit.Eval(xi), 1.6, 1e-9) << xi;
+    EXPECT_NEAR(fit.Slope(xi), 0.0, 1e-12) << xi;
+    EXPECT_EQ(fit.Curvature(xi), 0.0) << xi;
+  }
+  // Beyond the straight: the parabola 1.6 + k (x - 20)^2 with k = 10 / 400, turning left.
+  EXPECT_NEAR(fit.Eval(30.0), 1.6 + 2.5, 1e-9);
+  EXPECT_NEAR(fit.Slope(30.0), 0.5, 1e-12);
+  EXPECT_NEAR(fit.Curvature(20.0), 0.05, 1e-12);
+  EXPECT_GT(fit.a, 0.0);
+}
+
+TEST(LaneFit, StraightThenParabolaFollowsASlopedStraight) {
+  // The straight need not run along x (a vehicle at an angle to its lane).
+  const double x[3] = {1.0, 15.0, 35.0};
+  const double y[3] = {0.5, 2.6, -4.4};
+  Parabola fit;
+  ASSERT_TRUE(FitStraightThenParabola(x, y, x[1], &fit));
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(fit.Eval(x[i]), y[i], 1e-9);
+  EXPECT_NEAR(fit.Slope(5.0), 0.15, 1e-12);
+  EXPECT_NEAR(fit.Eval(8.0), 0.5 + 0.15 * 7.0, 1e-9);
+  EXPECT_NEAR(fit.Slope(15.0 + 1e-9), 0.15, 1e-6);  // tangent where the turn starts
+  EXPECT_LT(fit.a, 0.0);                            // turning right
+}
+
+TEST(LaneFit, StraightThenParabolaTurnsWhereItIsTold) {
+  // The straight may end before or after the middle point; all three points stay on the curve.
+  const double x[3] = {0.0, 20.0, 40.0};
+  const double y[3] = {1.6, 1.7, 11.6};
+  for (double xs : {15.0, 19.0, 20.0, 21.0, 30.0}) {
+    Parabola fit;
+    ASSERT_TRUE(FitStraightThenParabola(x, y, xs, &fit)) << xs;
+    EXPECT_EQ(fit.x_start, xs);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(fit.Eval(x[i]), y[i], 1e-9) << xs << " point " << i;
+    EXPECT_EQ(fit.Curvature(xs - 1.0), 0.0) << xs;
+    EXPECT_GT(fit.Curvature(xs + 1.0), 0.0) << xs;
+    // Straight before x_start, the line through point 0 with the tangent's slope.
+    EXPECT_NEAR(fit.Eval(xs - 5.0) - fit.Eval(xs - 10.0), 5.0 * fit.Slope(xs), 1e-9) << xs;
+  }
+  Parabola fit;
+  EXPECT_FALSE(FitStraightThenParabola(x, y, 0.0, &fit));   // no straight
+  EXPECT_FALSE(FitStraightThenParabola(x, y, 40.0, &fit));  // no turn
+}
+
+TEST(LaneFit, StraightThenParabolaNeedsIncreasingX) {
+  Parabola fit{9.0, 9.0, 9.0};
+  const double y[3] = {0.0, 0.0, 5.0};
+  for (const auto& x : {std::array<double, 3>{0, 30, 20}, std::array<double, 3>{10, 5, 20},
+                        std::array<double, 3>{0, 0, 20}, std::array<double, 3>{0, 20, 20}}) {
+    EXPECT_FALSE(FitStraightThenParabola(x.data(), y, x[1], &fit)) << x[0] << " " << x[1] << " " << x[2];
+  }
+  const double x[3] = {0.0, 10.0, 20.0};
+  const double bad[3] = {0.0, std::nan(""), 5.0};
+  EXPECT_FALSE(FitStraightThenParabola(x, bad, 10.0, &fit));
+  EXPECT_EQ(fit.a, 9.0);  // untouched
+  EXPECT_EQ(fit.x_start, -HUGE_VAL);
+}
+
+TEST(LaneFit, HostFitHonoursStraightToMiddleOnlyWhenAsked) {
+  LaneSet lanes;
+  Lane lane;
+  lane.left.points = {Point2{0, 1.6}, Point2{20, 1.6}, Point2{40, 11.6}};
+  lane.right.points = {Point2{0, -1.6}, Point2{20, -1.6}, Point2{40, 8.4}};
+  lane.straight_to_middle = true;
+  lanes.own = lane;
+  Params p;
+  const internal::FittedLanes fitted = internal::FitLanes(lanes, "lanes", p);
+  EXPECT_NEAR(fitted.own->Centre().Eval(10.0), 0.0, 1e-9);
+  EXPECT_NEAR(fitted.own->Centre().Eval(40.0), 10.0, 1e-9);
+  p.straight_before_turn = false;  // the mark ignored: the paper's parabola and its dip
+  EXPECT_LT(internal::FitLanes(lanes, "lanes", p).own->Centre().Eval(10.0), -1.2);
+  EXPECT_FALSE(ParamsPreset("paper-literal").straight_before_turn);
+  // Samples that do not run forward cannot be straight to the middle: a clear error.
+  lanes.own->left.points[1].x = 50.0;
+  try {
+    internal::FitLanes(lanes, "scene.ego.lanes", Params{});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("scene.ego.lanes.own.left: straight to the middle"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(LaneFit, HostFitNamesTheFieldOfADegenerateDivider) {

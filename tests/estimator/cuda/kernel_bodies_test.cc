@@ -132,6 +132,18 @@ TEST(CudaKernelBodies, OneBatchOfMixedScenesMatchesTheCpuBackendExactly) {
   ExpectBatchSameAsCpu(scenes, "mixed batch");
 }
 
+TEST(CudaKernelBodies, VehiclesThatLeaveTheSceneMatchTheCpuBackendExactly) {
+  // Params::route_end_leaves: the ego and some vehicles leave at their route's end.
+  std::vector<Scene> scenes;
+  for (unsigned seed = 11; seed <= 14; ++seed) {
+    Scene s = testing::RandomScene(seed, 4, 1, true);
+    s.ego.state.route_end_m = 4.0 * seed - 30.0 > 0.0 ? 4.0 * seed - 30.0 : 0.0;
+    for (size_t i = 0; i < s.vehicles.size(); i += 2) s.vehicles[i].state.route_end_m = 3.0 + i;
+    scenes.push_back(s);
+  }
+  ExpectBatchSameAsCpu(scenes, "leaving batch");
+}
+
 TEST(CudaKernelBodies, OtherParametersAndDiscriminationScenesMatchTheCpuBackendExactly) {
   // Another step partition (odd instants, shorter horizon) and the paper-literal models: the
   // kernel bodies take everything from the hypothesis sets and the layout.
