@@ -59,6 +59,14 @@ double SampledReach(const LaneCorridor& c, double reach_m, double yaw, bool turn
   return reach_m;
 }
 
+double LaneYawRate(const LaneCorridor& c, double speed, double window_m) {
+  if (c.centre.size() < 2 || !(window_m > 0.0)) return 0.0;
+  double behind = 0.0, ahead = 0.0;
+  PointAlong(c.centre, c.position_m - window_m, &behind);
+  PointAlong(c.centre, c.position_m + window_m, &ahead);
+  return speed * core::WrapAngle(ahead - behind) / (2.0 * window_m);
+}
+
 double StraightBeforeTurn(const LaneCorridor& c, double reach_m) {
   constexpr double kStep = 0.5;  // m
   double start_heading = 0.0, end_heading = 0.0;

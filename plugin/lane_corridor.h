@@ -78,6 +78,12 @@ LaneSampling LaneSamplingFor(const Params& params);
 double SampledReach(const LaneCorridor& corridor, double reach_m, double yaw,
                     bool turn_lane_frame = false);
 
+/** The yaw rate of a vehicle that follows the corridor's centre line at `speed`, as SUMO's
+ *  vehicles follow their lanes: speed x the heading change from window_m behind its position
+ *  to window_m ahead, over 2 window_m (0 on a straight, speed / radius in a turn; before the
+ *  corridor's start the first segment's heading counts). */
+double LaneYawRate(const LaneCorridor& corridor, double speed, double window_m);
+
 /** Where the corridor's centre line stops running straight: the distance ahead of position
  *  at which it has turned more than kStraightToleranceRad from its heading at position, when
  *  that is at least kMinStraightM and at most reach - kMinTurnM and the line has turned at

@@ -215,6 +215,25 @@ TEST(LaneCorridor, OnlyAStraightFollowedByATurnIsSampledToItsEnd) {
   EXPECT_NEAR(StraightBeforeTurn(later, 30.0), 18.0, 0.5);
 }
 
+TEST(LaneCorridor, LaneYawRateFollowsTheLaneNotThePast) {
+  LaneCorridor c = StraightThenLeftTurn();  // radius 10 m from 30 m on
+  c.position_m = 10.0;
+  EXPECT_EQ(LaneYawRate(c, 8.0, 2.5), 0.0);  // on the straight
+  // Halfway through the turn: v / r, within the polyline's 5 degree segments (a 5 m window
+  // sees 25-30 degrees of them).
+  c.position_m = 30.0 + 10.0 * core::kPi / 4;
+  EXPECT_NEAR(LaneYawRate(c, 8.0, 2.5), 8.0 / 10.0, 0.11);
+  c.position_m = 30.0;  // entering it: half the window turns
+  EXPECT_NEAR(LaneYawRate(c, 8.0, 2.5), 0.4, 0.06);
+  // A car that has just left a turn onto a straight lane: the corridor starts with that lane,
+  // and what lies behind its start counts as straight.
+  LaneCorridor exit;
+  exit.centre = {{0, 0}, {0, 100}};
+  exit.position_m = 1.0;
+  EXPECT_EQ(LaneYawRate(exit, 5.0, 2.5), 0.0);
+  EXPECT_EQ(LaneYawRate(LaneCorridor{}, 5.0, 2.5), 0.0);
+}
+
 TEST(LaneCorridor, VehicleAcrossItsLaneGetsNoLanes) {
   LaneCorridor c;
   c.centre = {{0, 0}, {100, 0}};
