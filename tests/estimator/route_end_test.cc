@@ -10,6 +10,7 @@
 #include "criticality/errors.h"
 #include "criticality/estimator.h"
 #include "src/problem.h"
+#include "test_scenes.h"
 
 namespace criticality {
 namespace {
@@ -30,40 +31,36 @@ Scene ArrivingCrossingScene() {
   return s;
 }
 
-double P(const Scene& scene, const Params& params = {}, Backend b = Backend::kCpu) {
-  EstimatorOptions opt;
-  opt.backend = b;
-  return Estimator(params, opt).Estimate(scene).p_collision;
-}
+using testing::PCollision;
 
 TEST(RouteEnd, ACarWhoseRouteEndsBeforeTheEgosRoadIsNoThreat) {
   const Scene driving_on = ArrivingCrossingScene();
   Scene leaving = driving_on;
   leaving.vehicles[0].state.route_end_m = 6.0;  // its front reaches the route's end 4 m short
-  const double p_on = P(driving_on), p_leaving = P(leaving);
+  const double p_on = PCollision(driving_on), p_leaving = PCollision(leaving);
   EXPECT_GT(p_on, 0.8);  // above the driver's warning release (0.8 x 0.9)
   EXPECT_LT(p_leaving, 0.01);
   // Off: as if it drove on; paper-literal ignores it too.
   Params off;
   off.route_end_leaves = false;
-  EXPECT_EQ(P(leaving, off), p_on);
+  EXPECT_EQ(PCollision(leaving, off), p_on);
   EXPECT_FALSE(ParamsPreset("paper-literal").route_end_leaves);
   // A route that ends beyond the ego's road changes nothing it could hit before.
   Scene far = driving_on;
   far.vehicles[0].state.route_end_m = 60.0;
-  EXPECT_GT(P(far), 0.8);
+  EXPECT_GT(PCollision(far), 0.8);
   // The reference backend builds and checks the same.
-  EXPECT_NEAR(P(leaving, Params{}, Backend::kReference), p_leaving, 1e-12);
-  EXPECT_NEAR(P(far, Params{}, Backend::kReference), P(far), 1e-12);
+  EXPECT_NEAR(PCollision(leaving, Params{}, Backend::kReference), p_leaving, 1e-12);
+  EXPECT_NEAR(PCollision(far, Params{}, Backend::kReference), PCollision(far), 1e-12);
 }
 
 TEST(RouteEnd, AnEgoWhoseRouteEndsBeforeTheCrossingIsNotWarned) {
   Scene leaving = ArrivingCrossingScene();
-  ASSERT_GT(P(leaving), 0.8);
+  ASSERT_GT(PCollision(leaving), 0.8);
   leaving.ego.state.route_end_m = 8.0;  // it leaves before the crossing car reaches its lane
   const Result r = Estimator(Params{}).Estimate(leaving);
   EXPECT_LT(r.p_collision, 0.01);
-  EXPECT_NEAR(P(leaving, Params{}, Backend::kReference), r.p_collision, 1e-12);
+  EXPECT_NEAR(PCollision(leaving, Params{}, Backend::kReference), r.p_collision, 1e-12);
   // Its escape routes still report where it drives, not where it went when it left.
   ASSERT_FALSE(r.escape_routes.empty());
   for (double x : r.escape_routes[0].x_m) EXPECT_LT(std::fabs(x), 100.0);

@@ -11,6 +11,7 @@
 #include "criticality/errors.h"
 #include "criticality/estimator.h"
 #include "criticality/scene_io.h"
+#include "test_scenes.h"
 
 namespace criticality {
 namespace {
@@ -36,11 +37,7 @@ Scene CrossingScene(double to_line, double crossing_accel = 0.0) {
   return s;
 }
 
-double PCollision(const Scene& scene, const Params& params = {}, Backend b = Backend::kCpu) {
-  EstimatorOptions opt;
-  opt.backend = b;
-  return Estimator(params, opt).Estimate(scene).p_collision;
-}
+using testing::PCollision;
 
 TEST(StopObligation, RedLightAheadOfACrossingCarMakesTheCrossingSafe) {
   // 9.5 m to the line at 8 m/s: 3.4 m/s^2 stops it, comfortable (AASHTO).

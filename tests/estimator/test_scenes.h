@@ -4,9 +4,18 @@
 #include <string>
 
 #include "bench/paper_scenes.h"
+#include "criticality/estimator.h"
 #include "criticality/scene.h"
 
 namespace criticality::testing {
+
+/** p_collision of one estimate of `scene` with `params` on backend `b`. */
+inline double PCollision(const Scene& scene, const Params& params = {},
+                         Backend b = Backend::kCpu) {
+  EstimatorOptions opt;
+  opt.backend = b;
+  return Estimator(params, opt).Estimate(scene).p_collision;
+}
 
 /** A seeded random scene around an ego on a straight 3-lane road: 0..max_vehicles vehicles
  *  (some with lanes of their own, some associated, some crossing), 0..max_pedestrians
