@@ -15,6 +15,15 @@ std::string Fixed(double x) {
   std::snprintf(b, sizeof b, "%+.2f", x);
   return b;
 }
+// The object with the largest share of p_collision ("" when none has any).
+std::string MainObject(const Result& r) {
+  const ObjectResult* best = nullptr;
+  for (const ObjectResult& o : r.objects) {
+    if (o.contribution > 0.0 && (!best || o.contribution > best->contribution)) best = &o;
+  }
+  return best ? best->id : "";
+}
+
 }  // namespace
 
 ActStage::ActStage(const DriverOptions& options, SumoWorld* world)
@@ -59,7 +68,7 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
     auto it = state_.find(e.ego);
     if (it == state_.end()) continue;
     if (it->second.warning)
-      out.warnings.push_back({e.ego, WarningChange::kClose, 0.0, 0.0, 0.0, ""});
+      out.warnings.push_back({e.ego, WarningChange::kClose, 0.0, 0.0, 0.0, "", ""});
     if (it->second.commanding && e.kind == EgoEventKind::kTeleportStart)
       release_after_teleport_.insert(e.ego);
     if (e.kind != EgoEventKind::kTeleportStart) release_after_teleport_.erase(e.ego);
@@ -75,11 +84,11 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
       if (p >= o.warn_threshold && !s.warning) {
         s.warning = true;
         s.peak = p;
-        out.warnings.push_back(
-            {ego.id, WarningChange::kOpen, p, ego.state.x_m, ego.state.y_m, ego.edge});
+        out.warnings.push_back({ego.id, WarningChange::kOpen, p, ego.state.x_m, ego.state.y_m,
+                                ego.edge, MainObject(r)});
       } else if (s.warning && p > s.peak) {
         s.peak = p;
-        out.warnings.push_back({ego.id, WarningChange::kPeak, p, 0.0, 0.0, ""});
+        out.warnings.push_back({ego.id, WarningChange::kPeak, p, 0.0, 0.0, "", ""});
       }
       // The episode ends once p has stayed below the release level for --warn-release-after.
       if (s.warning && p >= o.warn_release) s.below_release_since = -1.0;
@@ -88,7 +97,7 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
         if (obs.time_s - s.below_release_since >= o.warn_release_after_s - 1e-9) {
           s.warning = false;
           s.below_release_since = -1.0;
-          out.warnings.push_back({ego.id, WarningChange::kClose, p, 0.0, 0.0, ""});
+          out.warnings.push_back({ego.id, WarningChange::kClose, p, 0.0, 0.0, "", ""});
         }
       }
       world_->Publish(ego.id, p, s.warning);

@@ -39,6 +39,7 @@ struct WarningEvent {
   double p_collision{0.0};
   double x_m{0.0}, y_m{0.0};  ///< where the ego was (kOpen)
   std::string edge;           ///< its edge (kOpen)
+  std::string object;         ///< the object with the largest share of p (kOpen; "": none)
 };
 
 /** One action of the closed loop (--act brake), as the actions table records it. */

@@ -19,6 +19,8 @@ struct ObjectSnapshot {
   double length_m{4.5};
   double width_m{1.8};
   std::optional<double> height_m;
+  /** A vehicle's normal maximum deceleration (SUMO's decel, m/s^2); 0 for persons. */
+  double normal_decel_mps2{0.0};
   /** A vehicle's own, left and right lanes seen from itself (counter-traffic flagged from its
    *  own direction of travel); empty for persons and where no usable lane exists. */
   LaneSet lanes;

@@ -198,6 +198,7 @@ Observation ObserveStage::Run() {
       }
     }
   }
+  obs.critical_events = critical_.Run(obs.time_s, obs.surroundings);
   return obs;
 }
 

@@ -2,13 +2,14 @@
 // Stage 1 of a step: what SUMO reports after the step. The step's time stamp (the one SUMO's
 // own outputs use), the egos' life cycle (depart, arrive, teleport start and end, vanish: normal
 // events, recorded, never an abort), SUMO's collisions (each contact once, under every
-// collision.action) and the egos to estimate with what is around them. Estimation of an ego
-// pauses while it is teleported.
+// collision.action), the egos to estimate with what is around them, and the egos' overlaps
+// and hard braking (critical_events.h). Estimation of an ego pauses while it is teleported.
 #include <set>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
+#include "plugin/critical_events.h"
 #include "plugin/driver_options.h"
 #include "plugin/object_snapshot.h"
 #include "plugin/route_ids.h"
@@ -47,6 +48,8 @@ struct Observation {
   std::vector<std::string> arrived;
   /** The egos driving now (not teleported), each with what is around it. */
   Surroundings surroundings;
+  /** Overlaps and hard braking of the egos that began in this step (critical_events.h). */
+  std::vector<CriticalEvent> critical_events;
 };
 
 class ObserveStage {
@@ -77,6 +80,7 @@ class ObserveStage {
   bool first_step_{true};
   long long egos_seen_{0};
   std::set<std::string> active_pairs_;
+  CriticalEventDetector critical_;
 };
 
 }  // namespace criticality::plugin

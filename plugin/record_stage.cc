@@ -62,6 +62,9 @@ void RecordStage::Run(const Observation& obs, const SceneBatch& batch, const Act
     row.involves_ego = ce.involves_ego;
     db_->AddCollision(row);
   }
+  for (const CriticalEvent& e : obs.critical_events) {
+    db_->AddCriticalEvent(t, e.ego, CriticalEventName(e.kind), e.other, e.value);
+  }
   if (!options_.record_scenes.empty()) {
     for (size_t k = 0; k < batch.scenes.size(); ++k) {
       const fs::path file =
@@ -74,7 +77,8 @@ void RecordStage::Run(const Observation& obs, const SceneBatch& batch, const Act
   for (const WarningEvent& w : acted.warnings) {
     switch (w.change) {
       case WarningChange::kOpen:
-        open_episode_[w.ego] = db_->OpenWarning(w.ego, t, w.p_collision, w.x_m, w.y_m, w.edge);
+        open_episode_[w.ego] =
+            db_->OpenWarning(w.ego, t, w.p_collision, w.x_m, w.y_m, w.edge, w.object);
         break;
       case WarningChange::kPeak:
         db_->UpdateWarningPeak(open_episode_.at(w.ego), w.p_collision);

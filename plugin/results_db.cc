@@ -23,7 +23,8 @@ CREATE TABLE steps(
   p_reference REAL NOT NULL, unavoidability REAL NOT NULL);
 CREATE TABLE warnings(
   id INTEGER PRIMARY KEY, run_id INTEGER NOT NULL REFERENCES runs(id), ego TEXT NOT NULL,
-  start_s REAL NOT NULL, end_s REAL, peak_p REAL NOT NULL, x_m REAL, y_m REAL, edge TEXT);
+  start_s REAL NOT NULL, end_s REAL, peak_p REAL NOT NULL, x_m REAL, y_m REAL, edge TEXT,
+  object TEXT);
 CREATE TABLE actions(
   run_id INTEGER NOT NULL REFERENCES runs(id), time_s REAL NOT NULL, ego TEXT NOT NULL,
   kind TEXT NOT NULL, accel_mps2 REAL, speed_mps REAL, p_collision REAL, speed_after_mps REAL,
@@ -37,6 +38,9 @@ CREATE TABLE collisions(
 CREATE TABLE ego_events(
   run_id INTEGER NOT NULL REFERENCES runs(id), time_s REAL NOT NULL, ego TEXT NOT NULL,
   event TEXT NOT NULL, detail TEXT);
+CREATE TABLE critical_events(
+  run_id INTEGER NOT NULL REFERENCES runs(id), time_s REAL NOT NULL, ego TEXT NOT NULL,
+  kind TEXT NOT NULL, other TEXT, value REAL);
 CREATE TABLE step_times(
   run_id INTEGER NOT NULL REFERENCES runs(id), time_s REAL NOT NULL, estimates INTEGER NOT NULL,
   shortcut_estimates INTEGER NOT NULL, sumo_ms REAL, observe_ms REAL, scenes_ms REAL,
@@ -86,8 +90,8 @@ ResultsDb::ResultsDb(const std::string& path) : path_(path) {
     Exec(kSchema);
     step_ = Prepare("INSERT INTO steps VALUES(?,?,?,?,?,?,?,?,?,?,?)");
     open_warning_ = Prepare(
-        "INSERT INTO warnings(run_id,ego,start_s,end_s,peak_p,x_m,y_m,edge) "
-        "VALUES(?,?,?,NULL,?,?,?,?)");
+        "INSERT INTO warnings(run_id,ego,start_s,end_s,peak_p,x_m,y_m,edge,object) "
+        "VALUES(?,?,?,NULL,?,?,?,?,?)");
     peak_warning_ = Prepare("UPDATE warnings SET peak_p=? WHERE id=?");
     close_warning_ = Prepare("UPDATE warnings SET end_s=? WHERE id=?");
     action_ = Prepare("INSERT INTO actions VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?)");
@@ -97,6 +101,7 @@ ResultsDb::ResultsDb(const std::string& path) : path_(path) {
         "(SELECT ?2 - start_s FROM warnings WHERE run_id=?1 AND ego IN (?3, ?4) AND start_s <= ?2 "
         "AND (end_s IS NULL OR end_s >= ?2 - ?15) ORDER BY start_s DESC LIMIT 1))");
     ego_event_ = Prepare("INSERT INTO ego_events VALUES(?,?,?,?,?)");
+    critical_event_ = Prepare("INSERT INTO critical_events VALUES(?,?,?,?,?,?)");
     step_time_ = Prepare("INSERT INTO step_times VALUES(?,?,?,?,?,?,?,?,?,?,?)");
     heartbeat_ = Prepare("UPDATE runs SET heartbeat_unix=? WHERE id=?");
   } catch (...) {
@@ -109,11 +114,11 @@ ResultsDb::~ResultsDb() { Close(); }
 
 void ResultsDb::Close() {
   for (sqlite3_stmt* s : {step_, open_warning_, peak_warning_, close_warning_, action_, collision_,
-                          ego_event_, step_time_, heartbeat_}) {
+                          ego_event_, critical_event_, step_time_, heartbeat_}) {
     sqlite3_finalize(s);
   }
   step_ = open_warning_ = peak_warning_ = close_warning_ = action_ = collision_ = ego_event_ =
-      step_time_ = heartbeat_ = nullptr;
+      critical_event_ = step_time_ = heartbeat_ = nullptr;
   // An open transaction is rolled back: only what Commit() or EndRun() committed stays.
   if (db_) sqlite3_close(db_);
   db_ = nullptr;
@@ -203,7 +208,8 @@ void ResultsDb::AddStep(const StepRow& r) {
 }
 
 long long ResultsDb::OpenWarning(const std::string& ego, double start_s, double p, double x_m,
-                                 double y_m, const std::string& edge) {
+                                 double y_m, const std::string& edge,
+                                 const std::string& object) {
   sqlite3_bind_int64(open_warning_, 1, run_id_);
   sqlite3_bind_text(open_warning_, 2, ego.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_double(open_warning_, 3, start_s);
@@ -211,6 +217,11 @@ long long ResultsDb::OpenWarning(const std::string& ego, double start_s, double 
   BindOptionalDouble(open_warning_, 5, x_m);
   BindOptionalDouble(open_warning_, 6, y_m);
   sqlite3_bind_text(open_warning_, 7, edge.c_str(), -1, SQLITE_TRANSIENT);
+  if (object.empty()) {
+    sqlite3_bind_null(open_warning_, 8);
+  } else {
+    sqlite3_bind_text(open_warning_, 8, object.c_str(), -1, SQLITE_TRANSIENT);
+  }
   Step(open_warning_, "warning");
   return sqlite3_last_insert_rowid(db_);
 }
@@ -280,6 +291,21 @@ void ResultsDb::AddEgoEvent(double time_s, const std::string& ego, const std::st
   sqlite3_bind_text(ego_event_, 4, event.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(ego_event_, 5, detail.c_str(), -1, SQLITE_TRANSIENT);
   Step(ego_event_, "ego event");
+}
+
+void ResultsDb::AddCriticalEvent(double time_s, const std::string& ego, const std::string& kind,
+                                 const std::string& other, double value) {
+  sqlite3_bind_int64(critical_event_, 1, run_id_);
+  sqlite3_bind_double(critical_event_, 2, time_s);
+  sqlite3_bind_text(critical_event_, 3, ego.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(critical_event_, 4, kind.c_str(), -1, SQLITE_TRANSIENT);
+  if (other.empty()) {
+    sqlite3_bind_null(critical_event_, 5);
+  } else {
+    sqlite3_bind_text(critical_event_, 5, other.c_str(), -1, SQLITE_TRANSIENT);
+  }
+  BindOptionalDouble(critical_event_, 6, value);
+  Step(critical_event_, "critical event");
 }
 
 void ResultsDb::AddStepTime(const StepTimeRow& t) {

@@ -75,9 +75,10 @@ class ResultsDb {
   void SetScenario(const std::string& expect, const std::string& expect_partner,
                    double quiet_until_s, const std::string& category);
   void AddStep(const StepRow& s);
-  /** Opens a warning episode where the ego is; returns its row id. */
+  /** Opens a warning episode where the ego is; `object`: the object with the largest share of
+   *  p_collision at the opening ("" stored as NULL). Returns its row id. */
   long long OpenWarning(const std::string& ego, double start_s, double p_collision, double x_m,
-                        double y_m, const std::string& edge);
+                        double y_m, const std::string& edge, const std::string& object = "");
   void UpdateWarningPeak(long long id, double peak);
   void CloseWarning(long long id, double end_s);
   void AddAction(const ActionRow& a);
@@ -87,6 +88,9 @@ class ResultsDb {
   void AddCollision(const CollisionRow& c);
   void AddEgoEvent(double time_s, const std::string& ego, const std::string& event,
                    const std::string& detail);
+  /** An overlap or a hard braking of an ego (plugin/critical_events.h); `other` "" is NULL. */
+  void AddCriticalEvent(double time_s, const std::string& ego, const std::string& kind,
+                        const std::string& other, double value);
   void AddStepTime(const StepTimeRow& t);
   /** Commits what was written since the last commit, refreshes the heartbeat (at most once a
    *  second) and opens the next transaction. */
@@ -114,6 +118,7 @@ class ResultsDb {
   double last_heartbeat_{0.0};
   sqlite3_stmt* step_{nullptr};
   sqlite3_stmt* open_warning_{nullptr};
+  sqlite3_stmt* critical_event_{nullptr};
   sqlite3_stmt* peak_warning_{nullptr};
   sqlite3_stmt* close_warning_{nullptr};
   sqlite3_stmt* action_{nullptr};

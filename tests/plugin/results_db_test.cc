@@ -99,6 +99,24 @@ TEST(ResultsDb, AnticipationCountsOnlyAnEpisodeActiveAtTheImpact) {
   EXPECT_EQ(Query(path, "select objects || ' ' || objects_in_reach from steps"), "2 1");
 }
 
+TEST(ResultsDb, WarningsNameTheirObjectAndCriticalEventsAreKept) {
+  const std::string path = TempFile("critical.sqlite");
+  {
+    ResultsDb db(path);
+    db.BeginRun("opts", "SUMO 1.15.0", "a", 0.1);
+    db.OpenWarning("a", 1.5, 0.95, 1.0, 2.0, "WE", "ped7");
+    db.OpenWarning("b", 2.5, 0.95, 1.0, 2.0, "WE");
+    db.AddCriticalEvent(2.0, "a", "overlap", "ped7", 6.5);
+    db.AddCriticalEvent(2.4, "a", "hard-braking", "", 9.0);
+    db.Commit();
+  }
+  EXPECT_EQ(Query(path, "SELECT object FROM warnings WHERE ego='a'"), "ped7");
+  EXPECT_EQ(Query(path, "SELECT object FROM warnings WHERE ego='b'"), "NULL");
+  EXPECT_EQ(Query(path, "SELECT group_concat(kind || ':' || ifnull(other, '-') || ':' || value, "
+                        "' ') FROM critical_events WHERE ego='a' ORDER BY time_s"),
+            "overlap:ped7:6.5 hard-braking:-:9.0");
+}
+
 TEST(ResultsDb, OnlyCommittedStepsSurvive) {
   const std::string path = TempFile("killed.sqlite");
   {

@@ -18,6 +18,17 @@ class Warning:
 
 
 @dataclass
+class CriticalEvent:
+    """An ego's body overlapping another's, or its braking harder than its normal maximum
+    (the driver's critical_events table, plugin/critical_events.h)."""
+    time_s: float
+    ego: str
+    kind: str  # overlap | hard-braking
+    other: str  # overlap: the object; else None
+    value: float
+
+
+@dataclass
 class Collision:
     time_s: float
     collider: str
@@ -47,6 +58,7 @@ class Run:
     warnings: list = field(default_factory=list)
     collisions: list = field(default_factory=list)
     ego_events: list = field(default_factory=list)  # (time_s, ego, event)
+    critical_events: list = field(default_factory=list)  # CriticalEvent, by time
 
     @property
     def ok(self):
@@ -125,6 +137,12 @@ def _read_tables(con, runs, key):
             if index in runs:
                 runs[index].collisions.append(Collision(t, collider, victim, vc or 0.0,
                                                         vv or 0.0, bool(ego)))
+    if "critical_events" in tables:
+        for index, t, ego, kind, other, value in con.execute(
+                f"select {key}, time_s, ego, kind, other, value from critical_events "
+                f"order by {by}time_s"):
+            if index in runs:
+                runs[index].critical_events.append(CriticalEvent(t, ego, kind, other, value))
     if "ego_events" in tables:
         for index, t, ego, event in con.execute(
                 f"select {key}, time_s, ego, event from ego_events order by {by}time_s"):

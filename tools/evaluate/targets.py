@@ -79,9 +79,19 @@ def check(rows, city, ssm_city_note=""):
         per = city.per_vehicle_hour
         out.append(TargetRow(
             f"<= {CITY_MAX_PER_VH:g} false alarm per vehicle-hour (city)",
-            f"{per:.1f} ({city.false_alarms} in {city.vehicle_hours:.2f} vehicle-hours)",
+            (f"{per:.1f} ({city.false_alarms} in {city.vehicle_hours:.2f} vehicle-hours; of "
+             f"{city.warnings} warnings, {city.followed_by_collision} were followed by a "
+             f"collision, {city.followed_by_overlap} by a body overlap, "
+             f"{city.followed_by_hard_braking} by hard braking)"),
             per <= CITY_MAX_PER_VH,
             f"{per / CITY_MAX_PER_VH:.0f}x the target" if per > CITY_MAX_PER_VH else ""))
+        ssm_part = ("" if city.ssm_warned_critical_events is None else
+                    f"; SSM's TTC < 3 s: {city.ssm_warned_critical_events}")
+        out.append(TargetRow("critical events in the city warned of (overlaps, hard braking)",
+                             f"ours: {city.warned_critical_events} of {city.critical_events}"
+                             f"{ssm_part}", None,
+                             "informational: a warning episode of that ego began at or before "
+                             "the event and ended at most 2 s before it"))
         if city.ssm_per_vehicle_hour is not None:
             out.append(TargetRow("SSM TTC < 3 s in the city (issue: ~100 per vehicle-hour)",
                                  f"{city.ssm_per_vehicle_hour:.1f} per vehicle-hour "

@@ -309,6 +309,29 @@ class CityTest(unittest.TestCase):
         self.assertAlmostEqual(row.vehicle_hours, 1.5)
         self.assertEqual(row.false_alarms, 2)
         self.assertAlmostEqual(row.per_vehicle_hour, 2 / 1.5)
+        self.assertEqual(row.followed_by_collision, 1)
+        self.assertAlmostEqual(row.warnings_per_vehicle_hour, 3 / 1.5)
+
+    def test_an_overlap_or_hard_braking_after_a_warning_is_no_false_alarm(self):
+        run = make_run("city", "a", [0.0] * 36000)
+        run.warnings = [run_data.Warning("a", 10.0, 11.0, 0.9), run_data.Warning("a", 20.0, 21.0, 0.9),
+                        run_data.Warning("a", 40.0, 41.0, 0.9), run_data.Warning("a", 50.0, None, 0.9)]
+        ev = run_data.CriticalEvent
+        run.critical_events = [
+            ev(12.5, "a", "overlap", "p1", 6.0),       # within 2 s of the end
+            ev(21.0, "b", "hard-braking", None, 9.0),  # another vehicle's
+            ev(39.0, "a", "overlap", "p2", 3.0),       # before the start
+            ev(43.5, "a", "hard-braking", None, 9.0),  # 2.5 s after the end: too late
+            ev(51.9, "a", "hard-braking", None, 9.0)]  # open episode: 2 s after its start
+        row = city_false_alarms.judge_city(run, "test", None)
+        self.assertEqual((row.followed_by_overlap, row.followed_by_hard_braking, row.false_alarms),
+                         (1, 1, 2))
+        # Of the five events, the overlap at 12.5 s and the braking at 51.9 s were warned of.
+        self.assertEqual((row.critical_events, row.warned_critical_events), (5, 2))
+        # A collision outranks what else followed.
+        run.collisions = [run_data.Collision(11.5, "a", "p1", 5.0, 1.0, True)]
+        row = city_false_alarms.judge_city(run, "test", None)
+        self.assertEqual((row.followed_by_collision, row.followed_by_overlap), (1, 0))
 
 
 class TargetsTest(unittest.TestCase):
