@@ -67,6 +67,15 @@ void BindOptionalDouble(sqlite3_stmt* s, int k, double v) {
   }
 }
 
+// An empty text is stored as NULL.
+void BindOptionalText(sqlite3_stmt* s, int k, const std::string& text) {
+  if (text.empty()) {
+    sqlite3_bind_null(s, k);
+  } else {
+    sqlite3_bind_text(s, k, text.c_str(), -1, SQLITE_TRANSIENT);
+  }
+}
+
 }  // namespace
 
 ResultsDb::ResultsDb(const std::string& path) : path_(path) {
@@ -217,11 +226,7 @@ long long ResultsDb::OpenWarning(const std::string& ego, double start_s, double 
   BindOptionalDouble(open_warning_, 5, x_m);
   BindOptionalDouble(open_warning_, 6, y_m);
   sqlite3_bind_text(open_warning_, 7, edge.c_str(), -1, SQLITE_TRANSIENT);
-  if (object.empty()) {
-    sqlite3_bind_null(open_warning_, 8);
-  } else {
-    sqlite3_bind_text(open_warning_, 8, object.c_str(), -1, SQLITE_TRANSIENT);
-  }
+  BindOptionalText(open_warning_, 8, object);
   Step(open_warning_, "warning");
   return sqlite3_last_insert_rowid(db_);
 }
@@ -299,11 +304,7 @@ void ResultsDb::AddCriticalEvent(double time_s, const std::string& ego, const st
   sqlite3_bind_double(critical_event_, 2, time_s);
   sqlite3_bind_text(critical_event_, 3, ego.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(critical_event_, 4, kind.c_str(), -1, SQLITE_TRANSIENT);
-  if (other.empty()) {
-    sqlite3_bind_null(critical_event_, 5);
-  } else {
-    sqlite3_bind_text(critical_event_, 5, other.c_str(), -1, SQLITE_TRANSIENT);
-  }
+  BindOptionalText(critical_event_, 5, other);
   BindOptionalDouble(critical_event_, 6, value);
   Step(critical_event_, "critical event");
 }
@@ -345,11 +346,7 @@ void ResultsDb::EndRun(const std::string& status, const std::string& end_reason,
   sqlite3_bind_text(s, 1, now.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(s, 2, status.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(s, 3, end_reason.c_str(), -1, SQLITE_TRANSIENT);
-  if (error.empty()) {
-    sqlite3_bind_null(s, 4);
-  } else {
-    sqlite3_bind_text(s, 4, error.c_str(), -1, SQLITE_TRANSIENT);
-  }
+  BindOptionalText(s, 4, error);
   sqlite3_bind_double(s, 5, UnixNow());
   sqlite3_bind_text(s, 6, summary_json.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_int64(s, 7, run_id_);
