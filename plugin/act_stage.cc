@@ -16,12 +16,9 @@ std::string Fixed(double x) {
   return b;
 }
 // The object with the largest share of p_collision ("" when none has any).
-std::string MainObject(const Result& r) {
-  const ObjectResult* best = nullptr;
-  for (const ObjectResult& o : r.objects) {
-    if (o.contribution > 0.0 && (!best || o.contribution > best->contribution)) best = &o;
-  }
-  return best ? best->id : "";
+std::string MainObjectId(const Result& r) {
+  const ObjectResult* main = MainObject(r);
+  return main ? main->id : "";
 }
 
 }  // namespace
@@ -85,7 +82,7 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
         s.warning = true;
         s.peak = p;
         out.warnings.push_back({ego.id, WarningChange::kOpen, p, ego.state.x_m, ego.state.y_m,
-                                ego.edge, MainObject(r)});
+                                ego.edge, MainObjectId(r)});
       } else if (s.warning && p > s.peak) {
         s.peak = p;
         out.warnings.push_back({ego.id, WarningChange::kPeak, p, 0.0, 0.0, "", ""});

@@ -6,10 +6,7 @@
 namespace criticality::plugin {
 
 bool MainThreatBehind(const Scene& scene, const Result& result) {
-  const ObjectResult* main = nullptr;
-  for (const ObjectResult& o : result.objects) {
-    if (o.contribution > 0.0 && (!main || o.contribution > main->contribution)) main = &o;
-  }
+  const ObjectResult* main = MainObject(result);
   if (!main) return false;
   const ObjectState* state = nullptr;
   for (const Vehicle& v : scene.vehicles) {

@@ -397,5 +397,21 @@ TEST(Estimator, EscapeRouteRecordsTheManoeuvreADriverWouldFollow) {
   EXPECT_EQ(best.speed_mps.size(), best.time_s.size());
 }
 
+TEST(Estimator, MainObjectIsTheLargestShareAndNoneWithoutAny) {
+  Result r;
+  EXPECT_EQ(MainObject(r), nullptr);
+  for (const auto& [id, share] : {std::pair<const char*, double>{"a", 0.0}, {"b", 0.3},
+                                  {"c", 0.5}, {"d", 0.5}, {"e", 0.1}}) {
+    ObjectResult o;
+    o.id = id;
+    o.contribution = share;
+    r.objects.push_back(o);
+  }
+  ASSERT_NE(MainObject(r), nullptr);
+  EXPECT_EQ(MainObject(r)->id, "c");  // the first of equal shares
+  for (ObjectResult& o : r.objects) o.contribution = 0.0;
+  EXPECT_EQ(MainObject(r), nullptr);
+}
+
 }  // namespace
 }  // namespace criticality

@@ -109,4 +109,14 @@ struct Result {
   ModuleTimes times;
 };
 
+/** The object with the largest share of p_collision (ObjectResult::contribution), the first of
+ *  equal ones; nullptr when none has any. */
+inline const ObjectResult* MainObject(const Result& r) {
+  const ObjectResult* main = nullptr;
+  for (const ObjectResult& o : r.objects) {
+    if (o.contribution > 0.0 && (!main || o.contribution > main->contribution)) main = &o;
+  }
+  return main;
+}
+
 }  // namespace criticality
