@@ -168,7 +168,10 @@ class CoSimulation {
     cfg.whole_network = o_.all_vehicles;
     cfg.lane_sampling = LaneSamplingFor(o_.params);
     observe_ = std::make_unique<ObserveStage>(o_, world_.get(), cfg);
-    scenes_ = std::make_unique<SceneStage>(o_);
+    // SUMO moves vehicles by x += v_new * dt unless told to use the ballistic update: the
+    // estimator predicts the positions that update gives (Scene::euler_update_step_s).
+    const bool ballistic = world_->Option("step-method.ballistic") == "true";
+    scenes_ = std::make_unique<SceneStage>(o_, ballistic ? 0.0 : dt_);
     estimate_ = std::make_unique<EstimateStage>(o_);
     act_ = std::make_unique<ActStage>(o_, world_.get());
     record_ = std::make_unique<RecordStage>(o_, db_.get());

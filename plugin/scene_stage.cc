@@ -7,7 +7,8 @@
 
 namespace criticality::plugin {
 
-SceneStage::SceneStage(const DriverOptions& o) : range_m_(o.range_m) {}
+SceneStage::SceneStage(const DriverOptions& o, double euler_update_step_s)
+    : range_m_(o.range_m), euler_update_step_s_(euler_update_step_s) {}
 
 SceneBatch SceneStage::Run(const Observation& obs) {
   SceneBatch batch;
@@ -24,6 +25,7 @@ SceneBatch SceneStage::Run(const Observation& obs) {
     nearby.reserve(e.nearby.size());
     for (int k : e.nearby) nearby.push_back(&s.objects[k]);
     batch.scenes.push_back(BuildScene(ego, nearby, range_m_, &left_out));
+    batch.scenes.back().euler_update_step_s = euler_update_step_s_;
     batch.egos.push_back(&ego);
   }
   if (left_out.empty()) return batch;

@@ -18,13 +18,16 @@ struct SceneBatch {
 
 class SceneStage {
  public:
-  explicit SceneStage(const DriverOptions& options);
+  /** @param euler_update_step_s SUMO's step when it moves vehicles by the Euler update (its
+   *  default), 0 under --step-method.ballistic: goes into every scene (Scene::euler_update_step_s). */
+  SceneStage(const DriverOptions& options, double euler_update_step_s);
   SceneBatch Run(const Observation& obs);
   /** Object reads left out of scenes so far (an object is counted once per step). */
   long long invalid_objects() const { return invalid_objects_; }
 
  private:
   double range_m_;
+  double euler_update_step_s_;
   long long invalid_objects_{0};
   bool reported_{false};
 };

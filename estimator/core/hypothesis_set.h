@@ -61,6 +61,11 @@ struct HypothesisSet {
    *  (Params::route_end_leaves): its poses from then on lie far from everything (kGoneX), so
    *  they collide with nothing. +inf: it stays. */
   double leave_distance{HUGE_VAL};
+  /** Half the step of a simulator's Euler position update (Scene::euler_update_step_s / 2), 0
+   *  for continuous motion: each pose is moved along the course by (v - v0) * position_lead,
+   *  which puts it where that update puts the object (ShiftAlongCourse in
+   *  trajectory_generation.h). Per set, so that a batch may mix scenes. */
+  double position_lead{0.0};
 
   // Lateral: section[k][l] is the path section through lateral sample l (right to left) that
   // is tracked until instant_time[k].

@@ -24,6 +24,17 @@ struct SimulationConfig {
   ControllerLimits controller;
 };
 
+/** Where a simulator that moves each object over a step dt by its speed at the end of the step
+ *  (x += v_new dt) puts it, given where continuous motion puts it: over steps 1..k the two
+ *  differ by sum (v_n - v_{n-1}) dt / 2 = (v_k - v_0) dt / 2, along the course. A braking
+ *  object is behind its continuous pose, an accelerating one ahead. (cx, cy): unit course. */
+CRIT_HD void ShiftAlongCourse(double lead_s, double v, double v0, double cx, double cy, double* x,
+                              double* y) {
+  const double d = (v - v0) * lead_s;
+  *x += cx * d;
+  *y += cy * d;
+}
+
 /** Initial steering angle consistent with the current yaw rate (kinematic estimate). */
 CRIT_HD double InitialSteer(const HypothesisSet& h, const ControllerLimits& c) {
   if (h.v0 < 0.1) return 0.0;
@@ -155,8 +166,12 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
       x[at] = GoneX(h);
       y[at] = 0.0;
     } else {
-      x[at] = h.X_WL.x + c0 * s.x - s0 * s.y;
-      y[at] = h.X_WL.y + s0 * s.x + c0 * s.y;
+      double px = s.x, py = s.y;
+      if (h.position_lead > 0.0)  // the course of this step (cy, sy, cb, sb from its start)
+        ShiftAlongCourse(h.position_lead, s.v, h.v0, cy * cb - sy * sb, sy * cb + cy * sb, &px,
+                         &py);
+      x[at] = h.X_WL.x + c0 * px - s0 * py;
+      y[at] = h.X_WL.y + s0 * px + c0 * py;
     }
     yaw[at] = h.X_WL.yaw + s.yaw;
     if (trace) {
@@ -185,12 +200,16 @@ CRIT_HD void SimulateHypothesis(const HypothesisSet& h, const SimulationConfig& 
   if (h.model == MotionModelKind::kPedestrian) {
     const double heading = h.heading[path];
     const double target = h.profile_target[profile];
-    double px = h.X_WL.x, py = h.X_WL.y, v = Clamp(h.v0, 0.0, h.max_speed);
+    const double v0 = Clamp(h.v0, 0.0, h.max_speed);
+    const double ch = std::cos(heading), sh = std::sin(heading);
+    double px = h.X_WL.x, py = h.X_WL.y, v = v0;
     for (int n = 0; n < cfg.n_steps; ++n) {
       PedestrianStep(heading, target, h.max_speed, cfg.tau, &px, &py, &v);
       const size_t at = static_cast<size_t>(n) * stride;
-      x[at] = px;
-      y[at] = py;
+      double sx = px, sy = py;
+      if (h.position_lead > 0.0) ShiftAlongCourse(h.position_lead, v, v0, ch, sh, &sx, &sy);
+      x[at] = sx;
+      y[at] = sy;
       yaw[at] = heading;
     }
     return;

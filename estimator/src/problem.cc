@@ -661,6 +661,10 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     pb.co_offset.push_back(offset);
   }
 
+  // The world's position update (estimator/ALGORITHM.md, "The simulator's position update").
+  pb.ego.position_lead = 0.5 * scene.euler_update_step_s;
+  for (core::HypothesisSet& h : pb.cos) h.position_lead = 0.5 * scene.euler_update_step_s;
+
   pb.counts.time_steps = pb.sim.n_steps;
   pb.counts.ego_trajectories = pb.ego.Trajectories();
   pb.counts.co_trajectories = offset;

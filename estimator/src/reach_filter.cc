@@ -1,5 +1,6 @@
 #include "src/reach_filter.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/oriented_box.h"
@@ -26,11 +27,15 @@ std::vector<double> EgoReachBound(const core::HypothesisSet& ego,
   const double a_first = std::hypot(ego.accel0, ego.v0 * ego.yaw_rate0);
   std::vector<double> bound(sim.n_steps + 1, 0.0);
   double v = ego.v0;
+  // A simulator's Euler update shifts each pose along the course by (v - v0) * lead, and
+  // |v - v0| grows by at most the largest acceleration per step.
+  const double dv_max = std::max(a_first, a_later) * tau;
   for (int n = 0; n < sim.n_steps; ++n) {
     const double a = n == 0 ? a_first : a_later;
     bound[n + 1] = bound[n] + v * tau + a * 0.5 * tau * tau;
     v += mu_g * tau;
   }
+  for (int n = 1; n <= sim.n_steps; ++n) bound[n] += dv_max * n * ego.position_lead;
   return bound;
 }
 

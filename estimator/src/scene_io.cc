@@ -98,6 +98,7 @@ struct LineReader {
 void WriteScene(std::ostream& out, const Scene& scene) {
   out << std::setprecision(17);
   out << "criticality-scene 1\n";
+  if (scene.euler_update_step_s > 0.0) out << "euler-update-step " << scene.euler_update_step_s << '\n';
   out << "ego " << scene.ego.id;
   WriteState(out, scene.ego.state);
   out << ' ' << scene.ego.length_m << ' ' << scene.ego.width_m;
@@ -150,7 +151,9 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       header = true;
       continue;
     }
-    if (kind == "ego") {
+    if (kind == "euler-update-step") {
+      scene.euler_update_step_s = r.Num();
+    } else if (kind == "ego") {
       scene.ego.id = r.Word();
       scene.ego.state = r.State();
       scene.ego.length_m = r.Num();
@@ -238,7 +241,8 @@ Scene ReadScene(std::istream& in, const std::string& source) {
         throw InputError(r.where + ": lane '" + which + "' must be own, left or right");
     } else {
       throw InputError(r.where + ": unknown record '" + kind +
-                       "' (ego, vehicle, pedestrian, lane, stop, footway, expected-accel, route-end)");
+                       "' (euler-update-step, ego, vehicle, pedestrian, lane, stop, footway, expected-accel, "
+                       "route-end)");
     }
     if (r.next != r.words.size()) throw InputError(r.where + ": too many values");
   }

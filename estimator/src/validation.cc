@@ -211,6 +211,10 @@ void ValidateScene(const Scene& scene, const Params& /*params*/) {
   const size_t objects = scene.vehicles.size() + scene.pedestrians.size();
   if (objects > 65535)
     Fail("scene.vehicles + scene.pedestrians (count)", objects, "must be at most 65535 objects");
+  RequireFinite("scene.euler_update_step_s", scene.euler_update_step_s);
+  if (scene.euler_update_step_s < 0.0 || scene.euler_update_step_s > 10.0)
+    Fail("scene.euler_update_step_s", scene.euler_update_step_s,
+         "must be in [0, 10] s (0: continuous motion)");
   ValidateState("scene.ego.state", scene.ego.state);
   ValidateSize("scene.ego", scene.ego.length_m, scene.ego.width_m, scene.ego.height_m);
   for (size_t i = 0; i < scene.vehicles.size(); ++i) {

@@ -91,6 +91,8 @@ TEST(ReachFilter, EgoReachBoundHoldsForEverySimulatedEgoHypothesis) {
     const Params params = SomeParams(rng);
     Scene scene;
     scene.ego = SomeEgo(rng);
+    // Every other trial as a simulator's Euler update moves it (poses shifted by the speed change).
+    if (trial % 2) scene.euler_update_step_s = Uni(rng, 0.05, 1.0);
     const internal::Problem pb = BuildProblem(scene, params);
     const std::vector<double> bound = EgoReachBound(pb.ego, pb.sim);
     const int steps = pb.sim.n_steps;
@@ -168,7 +170,8 @@ TEST(ReachFilter, ShortcutGivesTheFullEstimateAtTheEdgeOfReach) {
     Params params = SomeParams(rng);
     params.horizon_s = 2.0;  // keep the full estimates quick
     params.step_s = 0.05;
-    const Scene scene = EdgeScene(rng, params);
+    Scene scene = EdgeScene(rng, params);
+    if (trial % 3 == 0) scene.euler_update_step_s = Uni(rng, 0.05, 1.0);
     EstimatorOptions full_opt, cut_opt;
     full_opt.threads = cut_opt.threads = 2;
     full_opt.keep_pair_matrix = cut_opt.keep_pair_matrix = true;

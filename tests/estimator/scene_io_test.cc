@@ -79,6 +79,19 @@ TEST(SceneIo, RouteEndsRoundTrip) {
   EXPECT_THROW(ReadScene(bad), InputError);
 }
 
+TEST(SceneIo, EulerUpdateStepRoundTrips) {
+  Scene scene = testing::RandomScene(6, 1, 0, true);
+  scene.euler_update_step_s = 0.25;
+  std::stringstream file;
+  WriteScene(file, scene);
+  EXPECT_EQ(ReadScene(file).euler_update_step_s, 0.25);
+  scene.euler_update_step_s = 0.0;  // continuous: no line, read back as 0
+  std::stringstream plain;
+  WriteScene(plain, scene);
+  EXPECT_EQ(plain.str().find("euler-update-step"), std::string::npos);
+  EXPECT_EQ(ReadScene(plain).euler_update_step_s, 0.0);
+}
+
 TEST(SceneIo, StraightToMiddleRoundTrips) {
   Scene scene = testing::RandomScene(6, 1, 0, true);
   scene.ego.lanes = bench::StraightThreeLanes();

@@ -19,7 +19,8 @@ inline double PCollision(const Scene& scene, const Params& params = {},
 
 /** A seeded random scene around an ego on a straight 3-lane road: 0..max_vehicles vehicles
  *  (some with lanes of their own, some associated, some crossing), 0..max_pedestrians
- *  pedestrians. Dense when `dense`. */
+ *  pedestrians. Dense when `dense`. Every third seed has an Euler position update
+ *  (Scene::euler_update_step_s). */
 inline Scene RandomScene(unsigned seed, int max_vehicles, int max_pedestrians, bool dense) {
   std::mt19937_64 rng(seed);
   auto uni = [&](double lo, double hi) {
@@ -67,6 +68,9 @@ inline Scene RandomScene(unsigned seed, int max_vehicles, int max_pedestrians, b
     p.state.speed_mps = uni(0.0, 2.5);
     s.pedestrians.push_back(p);
   }
+  // Every third seed as a simulator with an Euler position update sees it (drawn without the
+  // random stream, as the stop lines).
+  if (seed % 3 == 2) s.euler_update_step_s = 0.1 * static_cast<double>(1 + seed % 10);
   return s;
 }
 

@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/paper_scenes.h"
@@ -39,6 +40,18 @@ TEST(Validation, NanAndInfiniteStates) {
   s = bench::PaperSceneS1();
   s.ego.state.x_m = std::numeric_limits<double>::infinity();
   ExpectMentions(EstimateError<InputError>(s), "scene.ego.state.x_m", "inf");
+}
+
+TEST(Validation, EulerUpdateStepMustBeInRange) {
+  Scene scene = bench::PaperSceneS1();
+  const std::vector<std::pair<double, std::string>> bad{
+      {-0.1, "-0.1"}, {11.0, "= 11"}, {std::numeric_limits<double>::quiet_NaN(), "nan"}};
+  for (const auto& [value, text] : bad) {
+    scene.euler_update_step_s = value;
+    ExpectMentions(EstimateError<InputError>(scene), "scene.euler_update_step_s", text);
+  }
+  scene.euler_update_step_s = 1.0;  // SUMO's default step
+  EXPECT_NO_THROW(Estimator(Params{}).Estimate(scene));
 }
 
 TEST(Validation, NegativeSizesAndSpeeds) {

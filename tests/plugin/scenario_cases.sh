@@ -100,6 +100,14 @@ case $case in
     p_bench=$("$bench" --scene-file "$scenes/$last" --repeat 1 --warmup 0 --json | tail -n 1 |
               python3 -c "import json,sys; print('%.12f' % json.loads(sys.stdin.read())['p_collision'])")
     check "criticality-bench --scene-file replays the recorded estimate exactly ($p_db = $p_bench)" test "$p_db" = "$p_bench"
+    # SUMO's default position update is Euler: the scenes say with which step; with
+    # --step-method.ballistic they say nothing (continuous motion).
+    check "the scenes carry SUMO's Euler update step (0.1 s)" grep -q '^euler-update-step 0.1' "$scenes/$last"
+    rm -rf "$scenes"
+    run rear_end "$db" --record-scenes "$scenes" --end 2 -- --step-method.ballistic >/dev/null
+    check "scenes were recorded under --step-method.ballistic" test -n "$(ls "$scenes")"
+    check "under --step-method.ballistic no scene has an Euler update step" \
+      test -z "$(grep -l '^euler-update-step' "$scenes"/*)"
     ;;
   connect)
     db=$work/connect.sqlite; rm -f "$db"

@@ -132,6 +132,15 @@ struct Scene {
   Ego ego;
   std::vector<Vehicle> vehicles;
   std::vector<Pedestrian> pedestrians;
+  /** How the world the scene comes from moves its objects. 0 (default): continuously, as in
+   *  the real world (and SUMO's ballistic update). > 0: by the Euler update of a simulation
+   *  with steps of this length, which moves each object over a step by its speed at the END of
+   *  the step (SUMO's default: x += v_new * dt). A vehicle braking there stops v * dt / 2 short
+   *  of where continuous braking stops it (6.5 m from 13 m/s with 1 s steps), and every future
+   *  position is continuous motion's shifted along the course by (v(t) - v(0)) * dt / 2: the
+   *  estimator predicts those positions (estimator/ALGORITHM.md, "The simulator's position
+   *  update"). */
+  double euler_update_step_s{0.0};
 };
 
 }  // namespace criticality

@@ -5,6 +5,7 @@
  *
  *  Format (one record per line, '#' starts a comment):
  *    criticality-scene 1
+ *    euler-update-step DT
  *    ego ID x y yaw speed accel yaw_rate sideslip length width height|-
  *    lane own|left|right COUNTER  lx0 ly0 lx1 ly1 lx2 ly2  rx0 ry0 rx1 ry1 rx2 ry2 [straight-to-middle]
  *    vehicle ID x y yaw speed accel yaw_rate sideslip length width height|- LANES(0|1)
@@ -17,8 +18,9 @@
  *  LANES flag is 1); a `stop` line (Vehicle::stop_line) to the vehicle line before it; a
  *  `footway` line (Pedestrian::stays_on_footway) to the pedestrian line before it; an
  *  `expected-accel` line sets ObjectState::expected_accel_mps2 of the ego or vehicle line
- *  before it (absent: not set), a `route-end` line its ObjectState::route_end_m. A lane line ending in `straight-to-middle` sets
- *  Lane::straight_to_middle. */
+ *  before it (absent: not set), a `route-end` line its ObjectState::route_end_m. A lane
+ *  line ending in `straight-to-middle` sets Lane::straight_to_middle. An `euler-update-step`
+ *  line (anywhere after the header; absent: 0) sets Scene::euler_update_step_s. */
 #include <istream>
 #include <ostream>
 #include <string>

@@ -1,0 +1,129 @@
+// A simulator's Euler position update (Scene::euler_update_step_s): SUMO moves each object over
+// a step by its speed at the end of the step, so a braking vehicle stops v0 * dt / 2 short of
+// where continuous braking stops it. The estimator must predict the positions that update
+// gives, checked here against the update itself, written out step by step.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/trajectory_generation.h"
+#include "criticality/estimator.h"
+#include "criticality/vehicle_class.h"
+
+namespace criticality {
+namespace {
+
+// SUMO's Euler update of a vehicle braking at `decel` from v0 with steps dt: the distance
+// covered after each of `steps` steps (v_{k+1} = max(v_k - decel dt, 0); x += v_{k+1} dt).
+std::vector<double> SumoEulerBraking(double v0, double decel, double dt, int steps) {
+  std::vector<double> x;
+  double v = v0, pos = 0.0;
+  for (int k = 0; k < steps; ++k) {
+    v = std::fmax(v - decel * dt, 0.0);
+    pos += v * dt;
+    x.push_back(pos);
+  }
+  return x;
+}
+
+// A one-track vehicle on a straight path braking at `decel` from v0 at once (no latency, an
+// instant ramp), simulated for `seconds` with the estimator's step.
+core::HypothesisSet BrakingVehicle(double v0, double decel) {
+  core::HypothesisSet h;
+  h.model = core::MotionModelKind::kOneTrack;
+  h.vehicle = VehicleParamsFor(VehicleClass::kLargeFamily, 4.6, 1.8);
+  h.v0 = v0;
+  h.accel0 = -decel;
+  h.n_profiles = 1;
+  h.profile_target[0] = -decel;
+  h.profile_start = -decel;
+  h.rate = 1e6;
+  h.n_instants = 1;
+  h.instant_time[0] = 100.0;
+  h.n_lateral = 1;
+  h.section[0][0] = core::Parabola{0.0, 0.0, 0.0};
+  h.n_paths = 1;
+  return h;
+}
+
+TEST(EulerUpdate, BrakingVehicleStopsWhereSumosEulerUpdateStopsIt) {
+  // 13.5 m/s at 4.5 m/s^2 with 1 s steps: SUMO's speeds 9, 4.5, 0 give 9, 13.5, 13.5 m;
+  // continuous braking covers 11.25, 18, 20.25 m.
+  const double v0 = 13.5, decel = 4.5, dt = 1.0;
+  core::HypothesisSet h = BrakingVehicle(v0, decel);
+  core::SimulationConfig cfg;
+  cfg.tau = 0.02;
+  cfg.n_steps = 200;  // 4 s
+  std::vector<double> x(200), y(200), yaw(200);
+  const std::vector<double> sumo = SumoEulerBraking(v0, decel, dt, 4);
+  h.position_lead = 0.5 * dt;
+  core::SimulateHypothesis(h, cfg, 0, 0, x.data(), y.data(), yaw.data());
+  for (int k = 1; k <= 4; ++k) {
+    const int n = k * 50 - 1;  // pose n is after n + 1 steps
+    EXPECT_NEAR(x[n], sumo[k - 1], 0.05) << "after " << k << " s";
+    EXPECT_NEAR(y[n], 0.0, 1e-9);
+  }
+  // Continuous motion (lead 0) is the physics the update departs from.
+  h.position_lead = 0.0;
+  core::SimulateHypothesis(h, cfg, 0, 0, x.data(), y.data(), yaw.data());
+  EXPECT_NEAR(x[49], 11.25, 0.05);
+  EXPECT_NEAR(x[199], v0 * v0 / (2.0 * decel), 0.05);
+}
+
+TEST(EulerUpdate, PedestrianShiftIsAlongItsHeading) {
+  // A walker at 1.2 m/s, heading 90 degrees, stopping at 1.2 m/s^2: SUMO's update with 1 s
+  // steps leaves it where it stands (its speed after the step is 0); continuous motion 0.6 m on.
+  core::HypothesisSet h;
+  h.model = core::MotionModelKind::kPedestrian;
+  h.X_WL = core::Pose2{3.0, 4.0, 0.0};
+  h.v0 = 1.2;
+  h.max_speed = 2.7;
+  h.n_profiles = 1;
+  h.profile_target[0] = -1.2;
+  h.n_paths = 1;
+  h.heading[0] = 0.5 * M_PI;
+  core::SimulationConfig cfg;
+  cfg.tau = 0.02;
+  cfg.n_steps = 100;
+  std::vector<double> x(100), y(100), yaw(100);
+  h.position_lead = 0.5;
+  core::SimulateHypothesis(h, cfg, 0, 0, x.data(), y.data(), yaw.data());
+  EXPECT_NEAR(x[99], 3.0, 1e-9);
+  EXPECT_NEAR(y[99], 4.0, 0.02);
+  h.position_lead = 0.0;
+  core::SimulateHypothesis(h, cfg, 0, 0, x.data(), y.data(), yaw.data());
+  EXPECT_NEAR(y[99], 4.6, 0.02);
+}
+
+// The ego approaches a stopped car in its lane at 13.5 m/s, its driver expected to brake at
+// 4.5 m/s^2 (SUMO's car following), 19 m between the bumpers. Continuous braking after the
+// reaction latency needs about 23 m: a collision. SUMO's Euler update with 1 s steps stops it
+// in 13.5 m: no collision, and no warning is due.
+Scene StoppedCarAhead(double euler_step_s) {
+  Scene s;
+  s.ego.state.speed_mps = 13.5;
+  s.ego.state.expected_accel_mps2 = -4.5;
+  s.ego.length_m = 5.0;
+  Vehicle v;
+  v.id = "stopped";
+  v.length_m = 5.0;
+  v.state.x_m = 24.0;
+  s.vehicles.push_back(v);
+  s.euler_update_step_s = euler_step_s;
+  return s;
+}
+
+TEST(EulerUpdate, SumosCoarseStepsStopTheEgoShortOfAStoppedCar) {
+  Estimator est{Params{}};
+  const Result continuous = est.Estimate(StoppedCarAhead(0.0));
+  const Result fine = est.Estimate(StoppedCarAhead(0.1));
+  const Result coarse = est.Estimate(StoppedCarAhead(1.0));
+  EXPECT_GT(continuous.p_reference, 0.9);
+  EXPECT_GT(fine.p_reference, 0.9);  // 0.1 s steps are nearly continuous: 0.7 m shorter
+  EXPECT_LT(coarse.p_reference, 0.01);
+  EXPECT_LT(coarse.p_collision, continuous.p_collision);
+}
+
+}  // namespace
+}  // namespace criticality
