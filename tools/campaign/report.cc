@@ -462,8 +462,9 @@ ReportResult MakeReport(const CampaignFolder& folder, const ReportOptions& o) {
           "known).\n"
        << "- `anticipation_*_s`: collision time minus the start of the warning before it "
           "(the driver's anticipation_s), over warned ego collisions.\n"
-       << "- `false_alarms`: warning episodes with no collision of their ego from their start "
-          "until "
+       << "- `false_alarms`: warning episodes with no collision of their ego, and no critical "
+          "event of it (its body overlapping another's, braking harder than its vehicle type's "
+          "decel: the driver's critical_events table), from their start until "
        << Cell(o.grace_s, 2)
        << " s after their end; in an act=brake run, a warning of an ego that collided in the "
           "same run with act=warn (or none) is not counted (its braking avoided the "

@@ -127,29 +127,37 @@ RunMetricsSet LoadRunMetrics(SqliteDb& db, double grace_s) {
   if (av.warnings) {
     each("SELECT run_index, count(*) FROM warnings GROUP BY run_index",
          [](RunMetrics& m, Statement& s) { m.warnings = s.Int(1); });
-    av.false_alarms = Has(db, "warnings", {"ego", "start_s", "end_s"}) &&
-                      Has(db, "collisions", {"run_index", "time_s", "collider", "victim"});
+    // A warning is a false alarm unless its ego collided, or (driver run files with a
+    // critical_events table) its body overlapped another or it braked hard, from the warning's
+    // start until grace_s after its end.
+    const bool warnings_ok = Has(db, "warnings", {"ego", "start_s", "end_s"});
+    const bool collisions_ok = Has(db, "collisions", {"run_index", "time_s", "collider", "victim"});
+    const bool events_ok = Has(db, "critical_events", {"run_index", "time_s", "ego"});
+    av.false_alarms = warnings_ok && (collisions_ok || !av.collisions);
     if (av.false_alarms) {
-      Statement s = db.Prepare(
-          "SELECT w.run_index, w.ego FROM warnings w WHERE NOT EXISTS (SELECT 1 FROM "
-          "collisions c WHERE c.run_index = w.run_index AND w.ego IN (c.collider, c.victim) AND "
-          "c.time_s >= w.start_s AND c.time_s <= COALESCE(w.end_s, 1e300) + ?) "
-          "ORDER BY w.run_index, w.start_s");
-      s.Bind(1, grace_s);
+      std::string sql = "SELECT w.run_index, w.ego FROM warnings w WHERE 1";
+      auto window = [](const std::string& a) {
+        return a + ".time_s >= w.start_s AND " + a + ".time_s <= COALESCE(w.end_s, 1e300) + ?";
+      };
+      int binds = 0;
+      if (collisions_ok) {
+        sql += " AND NOT EXISTS (SELECT 1 FROM collisions c WHERE c.run_index = w.run_index AND "
+               "w.ego IN (c.collider, c.victim) AND " + window("c") + ")";
+        ++binds;
+      }
+      if (events_ok) {
+        sql += " AND NOT EXISTS (SELECT 1 FROM critical_events e WHERE e.run_index = w.run_index "
+               "AND e.ego = w.ego AND " + window("e") + ")";
+        ++binds;
+      }
+      Statement s = db.Prepare(sql + " ORDER BY w.run_index, w.start_s");
+      for (int b = 1; b <= binds; ++b) s.Bind(b, grace_s);
       while (s.Step()) {
         const auto it = at.find(static_cast<std::size_t>(s.Int(0)));
         if (it == at.end()) continue;
         ++set.runs[it->second].false_alarms;
         set.runs[it->second].false_alarm_egos.push_back(s.Text(1));
       }
-    } else if (Has(db, "warnings", {"ego", "start_s", "end_s"}) && !av.collisions) {
-      // No collisions table at all (no run had one): every warning is a false alarm.
-      av.false_alarms = true;
-      each("SELECT run_index, ego FROM warnings ORDER BY run_index, start_s",
-           [](RunMetrics& m, Statement& s) {
-             ++m.false_alarms;
-             m.false_alarm_egos.push_back(s.Text(1));
-           });
     } else {
       set.notes.push_back(
           "false alarms: warnings need ego, start_s, end_s and collisions time_s, collider, "

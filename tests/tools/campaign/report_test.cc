@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <utility>
 
 #include "tests/tools/campaign/campaign_test_util.h"
 #include "tools/campaign/hotspots.h"
@@ -136,6 +137,21 @@ TEST(Report, AWarningWithoutACollisionInEitherRunIsAFalseAlarm) {
   EXPECT_EQ(rows[0].at("false_alarms"), "2");  // warn
   EXPECT_EQ(rows[1].at("false_alarms"), "2");  // brake: nothing to avoid either
   EXPECT_EQ(rows[1].at("collisions_avoided"), "0");
+}
+
+TEST(Report, AWarningFollowedByItsEgosOverlapIsNoFalseAlarm) {
+  // The warning runs 0.6-1.1 s, the report's grace is 1 s: an overlap of the ego's body at
+  // 1.8 s follows it, one at 2.5 s does not.
+  for (const auto& [at, expected] : {std::pair<const char*, const char*>{"1.8", "0"}, {"2.5", "2"}}) {
+    TempDir d;
+    const ReportResult r = MakeReport(
+        RunCampaignOf(d, std::string("  stand-in-overlap: ") + at + "\n", /*collide=*/false),
+        NoPlots());
+    const auto rows = Csv(r.dir / "summary.csv");
+    ASSERT_EQ(rows.size(), 4u);
+    EXPECT_EQ(rows[0].at("false_alarms"), expected) << "overlap at " << at;  // warn
+    EXPECT_EQ(rows[1].at("false_alarms"), expected) << "overlap at " << at;  // brake
+  }
 }
 
 TEST(Report, ReliabilityCountsStepsBeforeTheCrash) {

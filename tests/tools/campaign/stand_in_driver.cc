@@ -11,6 +11,8 @@
 //   --stand-in-collide T     a collision of ego with "other" at time T (lane e1_0, pos 12.5),
 //                            unless --act brake (braking avoids it)
 //   --stand-in-warn T        a warning episode of ego starting at T, ending 0.5 s later
+//   --stand-in-overlap T     a critical event at T: ego's body overlaps person "p1" (table
+//                            critical_events, as the driver writes it)
 //   --stand-in-newer         write the columns and tables of a newer driver (warnings x_m, y_m,
 //                            edge; collisions x_m, y_m, involves_ego; an ego_events table)
 //   --stand-in-no-anticipation  a collisions table without the anticipation_s column
@@ -56,6 +58,7 @@ const char* kOptions[] = {"config",
                           "stand-in-steps",
                           "stand-in-collide",
                           "stand-in-warn",
+                          "stand-in-overlap",
                           "stand-in-newer",
                           "stand-in-no-db",
                           "stand-in-no-anticipation",
@@ -76,7 +79,7 @@ bool Exec(sqlite3* db, const std::string& sql) {
 int main(int argc, char** argv) {
   std::string output, config, log, act = "warn";
   int exit_code = 0, steps = 10, seed = 0, profiles = 6;
-  double sleep_s = 0, collide = -1, warn = -1;
+  double sleep_s = 0, collide = -1, warn = -1, overlap = -1;
   bool newer = false, no_db = false, ignore_term = false, no_anticipation = false;
   std::string command;  // SQL-quoted below
   for (int i = 0; i < argc; ++i) {
@@ -114,6 +117,8 @@ int main(int argc, char** argv) {
       collide = std::atof(next().c_str());
     } else if (a == "--stand-in-warn") {
       warn = std::atof(next().c_str());
+    } else if (a == "--stand-in-overlap") {
+      overlap = std::atof(next().c_str());
     } else if (a == "--stand-in-newer") {
       newer = true;
     } else if (a == "--stand-in-no-anticipation") {
@@ -225,6 +230,13 @@ int main(int argc, char** argv) {
       ++collisions;
     }
     if (newer) Exec(db, "INSERT INTO ego_events VALUES(1, 0.1, 'ego', 'departed')");
+    if (overlap >= 0) {
+      Exec(db,
+           "CREATE TABLE critical_events(run_id INTEGER, time_s REAL, ego TEXT, kind TEXT, other "
+           "TEXT, value REAL)");
+      Exec(db, "INSERT INTO critical_events VALUES(1, " + std::to_string(overlap) +
+                   ", 'ego', 'overlap', 'p1', 2.5)");
+    }
     Exec(db, "UPDATE runs SET status = '" + status + "', ended_utc = '2000-01-01T00:00:01Z'");
     Exec(db, "COMMIT");
     sqlite3_close(db);
