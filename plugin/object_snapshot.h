@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "criticality/scene.h"
+#include "plugin/car_following.h"
 
 namespace criticality::plugin {
 
@@ -27,6 +28,9 @@ struct ObjectSnapshot {
   /** A vehicle's obligation to stop ahead, as SUMO knows it (sumo_world.h): its next signal
    *  is red or yellow, or its next link is a stop sign or yields to an approaching foe. */
   std::optional<StopLine> stop_line;
+  /** A vehicle's leader (SUMO's getLeader) when one is close enough to matter (car_following.h):
+   *  its expected acceleration follows it. */
+  std::optional<Leader> leader;
   /** A person's walk goes on along the footway (plugin/footway.h, Pedestrian::stays_on_footway). */
   bool stays_on_footway{false};
   std::string lane;  ///< SUMO lane ID ("" when not on a lane)

@@ -258,8 +258,9 @@ the ego in the same runs, critical while TTC < 3 s or DRAC > 3 m/s^2 with any fo
 all foes, as ours); PET < 2 s counts as a false positive only (it is measured after the
 encounter); SSM's anticipation comes from its conflict with the collision partner. SSM ignores
 pedestrians. City: every vehicle an ego; vehicle-hours = estimated ego steps x step length; a
-false alarm is a warning episode of an ego that did not collide between the episode's start and
-2 s after its end; SSM's episodes are runs of steps with TTC < 3 s with any foe. Closed loop:
+false alarm is a warning episode of an ego that did not collide, overlap another's body or brake
+harder than its vehicle type's decel (the driver's critical_events) between the episode's start
+and 2 s after its end; SSM's episodes are runs of steps with TTC < 3 s with any foe. Closed loop:
 the same scenario with --act brake; impact speed is the collider's speed in the ego's first
 collision; travel time runs from the ego's departure to its arrival (or the end of the run).
 """.split())
