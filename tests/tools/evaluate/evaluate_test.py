@@ -355,6 +355,22 @@ class TargetsTest(unittest.TestCase):
         self.assertFalse(city_row.met)
         self.assertIn("5x", city_row.gap)
 
+    def test_ssm_comparison_says_why_when_ours_is_later(self):
+        def row(name, ours, ssm):
+            return open_loop.OpenLoopRow(name, "moving-object", "ours", status="ok",
+                                         anticipation_s=ours, false_positives=0,
+                                         ssm_anticipation_s=ssm, ssm_false_positives=1)
+        later = {t.target: t for t in targets.check([row("a", 1.5, 3.0), row("b", 1.0, 2.0)],
+                                                     None)}
+        ssm_row = later["earlier than SSM's TTC at fewer false alarms"]
+        self.assertFalse(ssm_row.met)
+        self.assertIn("why: ours predicts 2 s ahead", ssm_row.gap)
+        self.assertIn("a: ours 1500 ms, SSM 3000 ms", ssm_row.gap)
+        earlier = {t.target: t for t in targets.check([row("a", 1.5, 1.0)], None)}
+        ssm_row = earlier["earlier than SSM's TTC at fewer false alarms"]
+        self.assertTrue(ssm_row.met)
+        self.assertNotIn("why", ssm_row.gap)
+
 
 if __name__ == "__main__":
     unittest.main()
