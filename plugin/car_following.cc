@@ -32,18 +32,18 @@ std::optional<double> CarFollowingAccel(double speed_mps, const Leader& leader,
   return std::max(needed, -normal_decel_mps2);
 }
 
-void FollowLeadersToTheirStops(std::vector<ObjectSnapshot>* objects, double normal_decel_mps2) {
+void ExpectCarFollowing(std::vector<ObjectSnapshot>* objects, double normal_decel_mps2) {
   std::unordered_map<std::string, const ObjectSnapshot*> vehicles;
   for (const ObjectSnapshot& o : *objects) {
     if (!o.person) vehicles.emplace(o.id, &o);
   }
   for (ObjectSnapshot& o : *objects) {
     if (o.person || !o.leader) continue;
-    const auto it = vehicles.find(o.leader->id);
-    if (it == vehicles.end() || !it->second->stop_line) continue;
-    Leader stopping = *o.leader;
-    stopping.stop_distance_m = it->second->stop_line->distance_m;
-    o.state.expected_accel_mps2 = CarFollowingAccel(o.state.speed_mps, stopping, normal_decel_mps2);
+    Leader leader = *o.leader;
+    const auto it = vehicles.find(leader.id);
+    if (it != vehicles.end() && it->second->stop_line)
+      leader.stop_distance_m = it->second->stop_line->distance_m;
+    o.state.expected_accel_mps2 = CarFollowingAccel(o.state.speed_mps, leader, normal_decel_mps2);
   }
 }
 

@@ -35,11 +35,12 @@ std::optional<double> CarFollowingAccel(double speed_mps, const Leader& leader,
 
 struct ObjectSnapshot;
 
-/** A follower behind a leader that must stop (a car approaching a red light, a yield line) is
- *  expected to stop behind it, although the leader has not braked yet: for each vehicle in
- *  `objects` whose leader is among them and has a stop line, its expected acceleration is
- *  recomputed with the leader's stop distance (CarFollowingAccel). */
-void FollowLeadersToTheirStops(std::vector<ObjectSnapshot>* objects, double normal_decel_mps2);
+/** Sets the expected acceleration (ObjectState::expected_accel_mps2) of every vehicle in
+ *  `objects` that has a leader: CarFollowingAccel, with the leader's stop distance when the
+ *  leader is among `objects` and has a stop line, so that a follower behind a leader that must
+ *  stop (a red light, a yield line) is expected to stop behind it although the leader has not
+ *  braked yet. Runs once all of a step's snapshots are read. */
+void ExpectCarFollowing(std::vector<ObjectSnapshot>* objects, double normal_decel_mps2);
 
 /** How far ahead a leader matters: the distance in which a closing leader would ask for
  *  1 m/s^2 of braking, at least 20 m and at most 250 m. */

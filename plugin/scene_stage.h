@@ -19,7 +19,8 @@ struct SceneBatch {
 class SceneStage {
  public:
   /** @param euler_update_step_s SUMO's step when it moves vehicles by the Euler update (its
-   *  default), 0 under --step-method.ballistic: goes into every scene (Scene::euler_update_step_s). */
+   *  default), 0 under --step-method.ballistic: goes into every scene
+   *  (Scene::euler_update_step_s). */
   SceneStage(const DriverOptions& options, double euler_update_step_s);
   SceneBatch Run(const Observation& obs);
   /** Object reads left out of scenes so far (an object is counted once per step). */

@@ -98,7 +98,8 @@ struct LineReader {
 void WriteScene(std::ostream& out, const Scene& scene) {
   out << std::setprecision(17);
   out << "criticality-scene 1\n";
-  if (scene.euler_update_step_s > 0.0) out << "euler-update-step " << scene.euler_update_step_s << '\n';
+  if (scene.euler_update_step_s > 0.0)
+    out << "euler-update-step " << scene.euler_update_step_s << '\n';
   out << "ego " << scene.ego.id;
   WriteState(out, scene.ego.state);
   out << ' ' << scene.ego.length_m << ' ' << scene.ego.width_m;
@@ -241,8 +242,8 @@ Scene ReadScene(std::istream& in, const std::string& source) {
         throw InputError(r.where + ": lane '" + which + "' must be own, left or right");
     } else {
       throw InputError(r.where + ": unknown record '" + kind +
-                       "' (euler-update-step, ego, vehicle, pedestrian, lane, stop, footway, expected-accel, "
-                       "route-end)");
+                       "' (euler-update-step, ego, vehicle, pedestrian, lane, stop, footway, "
+                       "expected-accel, route-end)");
     }
     if (r.next != r.words.size()) throw InputError(r.where + ": too many values");
   }

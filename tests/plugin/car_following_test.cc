@@ -96,7 +96,7 @@ TEST(CarFollowing, FollowersOfLeadersWithAStopLineExpectThemToStop) {
   objects.push_back(vehicle("far", 4.0));  // its leader is not among the objects
   objects.back().leader = Ahead(3.0, 5.8, 2.1);
   objects.back().leader->id = "elsewhere";
-  FollowLeadersToTheirStops(&objects, 4.5);
+  ExpectCarFollowing(&objects, 4.5);
   ASSERT_TRUE(objects[2].state.expected_accel_mps2.has_value());
   EXPECT_DOUBLE_EQ(*objects[2].state.expected_accel_mps2, -1.0);
   EXPECT_FALSE(objects[1].state.expected_accel_mps2.has_value());

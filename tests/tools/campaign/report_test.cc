@@ -142,7 +142,8 @@ TEST(Report, AWarningWithoutACollisionInEitherRunIsAFalseAlarm) {
 TEST(Report, AWarningFollowedByItsEgosOverlapIsNoFalseAlarm) {
   // The warning runs 0.6-1.1 s, the report's grace is 1 s: an overlap of the ego's body at
   // 1.8 s follows it, one at 2.5 s does not.
-  for (const auto& [at, expected] : {std::pair<const char*, const char*>{"1.8", "0"}, {"2.5", "2"}}) {
+  using Case = std::pair<const char*, const char*>;
+  for (const auto& [at, expected] : {Case{"1.8", "0"}, Case{"2.5", "2"}}) {
     TempDir d;
     const ReportResult r = MakeReport(
         RunCampaignOf(d, std::string("  stand-in-overlap: ") + at + "\n", /*collide=*/false),
