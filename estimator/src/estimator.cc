@@ -4,6 +4,7 @@
 
 #include "cpu/cpu_backend.h"
 #include "cpu/reference_backend.h"
+#include "cpu/scene_pool.h"
 #include "criticality/errors.h"
 #include "src/backend.h"
 #include "src/problem.h"
@@ -74,6 +75,16 @@ struct ReachShortcut {
     result->objects = std::move(all);
   }
 };
+
+// True when one estimate with `params` is too small to split over threads: below ~50,000 ego
+// hypothesis steps (all three lanes) it takes well under a millisecond on one thread, and
+// waking threads for it costs more than it saves.
+bool TooSmallToSplit(const Params& p) {
+  double ego_steps = p.profiles * static_cast<double>(p.TimeSteps());
+  for (size_t k = 0; k < p.path_sample_times_s.size(); ++k)
+    ego_steps *= p.LateralSamplesThreeLanes();
+  return ego_steps < 5e4;
+}
 
 }  // namespace
 
@@ -189,12 +200,20 @@ Result Estimator::Estimate(const Scene& scene) {
     backend_->Run(problem, params_, options_.keep_pair_matrix, &result);
   }
   shortcut.Restore(built, &result);
+  result.answered_by_reach_shortcut = shortcut.none_left;
   result.counts = problem.counts;
   result.times.total_ms = MsSince(t0);
   return result;
 }
 
 std::vector<Result> Estimator::EstimateBatch(const std::vector<Scene>& scenes) {
+  // The cpu backend on several threads: whole estimates in parallel, each on one thread, for
+  // a batch; a single scene keeps every thread (below) unless it is small.
+  if (options_.backend == Backend::kCpu && threads() > 1 &&
+      (scenes.size() > 1 || (scenes.size() == 1 && TooSmallToSplit(params_)))) {
+    if (!pool_) pool_ = std::make_unique<ScenePool>(params_, options_, threads());
+    return pool_->EstimateBatch(scenes);
+  }
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<internal::Problem> built, problems;
   std::vector<ReachShortcut> shortcuts(scenes.size());
@@ -221,7 +240,10 @@ std::vector<Result> Estimator::EstimateBatch(const std::vector<Scene>& scenes) {
     backend_->RunBatch(views, params_, options_.keep_pair_matrix, &ran);
     for (size_t i = 0; i < run.size(); ++i) results[run[i]] = std::move(ran[i]);
   }
-  for (size_t k = 0; k < results.size(); ++k) shortcuts[k].Restore(built[k], &results[k]);
+  for (size_t k = 0; k < results.size(); ++k) {
+    shortcuts[k].Restore(built[k], &results[k]);
+    results[k].answered_by_reach_shortcut = shortcuts[k].none_left;
+  }
   const double total_ms = MsSince(t0);
   for (size_t k = 0; k < results.size(); ++k) {
     results[k].counts = problems[k].counts;

@@ -1,13 +1,16 @@
 // The exact reach shortcut (src/reach_filter.h): the ego's reach bound holds for every
 // simulated ego hypothesis, and the shortcut changes nothing in the result on scenes whose
 // objects sit at the edge of reach (same p_cra, contributions, pair matrix of the kept objects,
-// escape routes; no dropped object has a colliding pair in the full estimate).
+// escape routes; no dropped object has a colliding pair in the full estimate), and the result
+// says when the shortcut answered it (Result::answered_by_reach_shortcut).
 #include "src/reach_filter.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "bench/paper_scenes.h"
 #include "core/oriented_box.h"
@@ -279,6 +282,60 @@ TEST(ReachFilter, AnEgoWithNoObjectInReachIsAnsweredWithoutTrajectories) {
   EXPECT_TRUE(b.objects[0].out_of_reach);
   EXPECT_EQ(b.objects[0].contribution, 0.0);
   EXPECT_EQ(b.objects[0].trajectories, 0);
+}
+
+TEST(ReachFilter, ResultSaysWhetherTheShortcutAnsweredIt) {
+  // The flag callers (the SUMO driver) count shortcut answers by: true exactly when the
+  // shortcut left no object and skipped the trajectories, on Estimate and on EstimateBatch
+  // (the sequential path on one thread, the scene pool on two).
+  Scene far;
+  far.ego.state.speed_mps = 12.0;
+  far.ego.lanes = bench::StraightThreeLanes();
+  Vehicle v;
+  v.id = "v";
+  v.state.x_m = 500.0;
+  v.state.speed_mps = 12.0;
+  far.vehicles.push_back(v);
+  Scene alone = far;  // no object at all: nothing left either
+  alone.vehicles.clear();
+  Scene near = far;  // 30 m ahead at the same speed: in reach, simulated
+  near.vehicles[0].state.x_m = 30.0;
+  Scene one_far_one_near = far;  // one left out, one left: still simulated
+  one_far_one_near.vehicles.push_back(near.vehicles[0]);
+  one_far_one_near.vehicles.back().id = "w";
+  const std::vector<Scene> scenes{far, alone, near, one_far_one_near};
+  for (int threads : {1, 2}) {
+    EstimatorOptions full_opt, cut_opt;
+    full_opt.threads = cut_opt.threads = threads;
+    cut_opt.reach_shortcut = true;
+    Estimator full(Params{}, full_opt), cut(Params{}, cut_opt);
+    const std::string what = std::to_string(threads) + " threads";
+    const Result far_cut = cut.Estimate(far);
+    EXPECT_TRUE(far_cut.answered_by_reach_shortcut) << what;
+    EXPECT_EQ(far_cut.times.trajectory_ms, 0.0) << what;  // it did skip the trajectories
+    EXPECT_TRUE(cut.Estimate(alone).answered_by_reach_shortcut) << what;
+    const Result near_cut = cut.Estimate(near);
+    EXPECT_FALSE(near_cut.answered_by_reach_shortcut) << what;
+    EXPECT_GT(near_cut.times.trajectory_ms, 0.0) << what;
+    const Result mixed_cut = cut.Estimate(one_far_one_near);
+    EXPECT_FALSE(mixed_cut.answered_by_reach_shortcut) << what;
+    EXPECT_TRUE(mixed_cut.objects.at(0).out_of_reach) << what;  // the shortcut did drop one
+    EXPECT_FALSE(full.Estimate(far).answered_by_reach_shortcut) << what;
+    EXPECT_FALSE(full.Estimate(alone).answered_by_reach_shortcut) << what;
+
+    const std::vector<Result> cut_batch = cut.EstimateBatch(scenes);
+    const std::vector<Result> full_batch = full.EstimateBatch(scenes);
+    ASSERT_EQ(cut_batch.size(), scenes.size());
+    ASSERT_EQ(full_batch.size(), scenes.size());
+    EXPECT_TRUE(cut_batch[0].answered_by_reach_shortcut) << what;
+    EXPECT_TRUE(cut_batch[1].answered_by_reach_shortcut) << what;
+    EXPECT_FALSE(cut_batch[2].answered_by_reach_shortcut) << what;
+    EXPECT_FALSE(cut_batch[3].answered_by_reach_shortcut) << what;
+    for (const Result& r : full_batch) EXPECT_FALSE(r.answered_by_reach_shortcut) << what;
+    // A batch of one goes another way (every thread on it): the flag must be set there too.
+    EXPECT_TRUE(cut.EstimateBatch({far}).at(0).answered_by_reach_shortcut) << what;
+    EXPECT_FALSE(cut.EstimateBatch({near}).at(0).answered_by_reach_shortcut) << what;
+  }
 }
 
 }  // namespace

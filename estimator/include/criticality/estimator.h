@@ -29,8 +29,8 @@ bool CudaUsable(std::string* why);
 
 /** Empty when the estimator can use `lane` as given (its dividers define y(x) in the observer's
  *  frame turned by frame_rad, see LaneFrameAngle, as Lane::straight_to_middle asks when set,
- *  and the lane has a positive width at the observer); otherwise why not. Lets a caller that builds lanes from a map (the SUMO driver)
- *  leave out a lane instead of failing the estimate. */
+ *  and the lane has a positive width at the observer); otherwise why not. Lets a caller that
+ *  builds lanes from a map (the SUMO driver) leave out a lane instead of failing the estimate. */
 std::string LaneProblem(const Lane& lane, double frame_rad = 0.0);
 
 /** The frame the estimator fits an observer's `lanes` in, as an angle from its heading: 0, or
@@ -41,7 +41,8 @@ double LaneFrameAngle(const LaneSet& lanes, const Params& params);
 /** Execution settings (not part of the algorithm). */
 struct EstimatorOptions {
   Backend backend{Backend::kCpu};
-  /** Worker threads for the cpu backend; 0 = hardware concurrency. */
+  /** Worker threads for the cpu backend (on one estimate, or on a batch's scenes: see
+   *  Estimator::EstimateBatch); 0 = hardware concurrency. */
   int threads{0};
   /** Keep Result::first_collision_step (2 bytes per ego x CO trajectory pair). */
   bool keep_pair_matrix{false};
@@ -53,9 +54,12 @@ struct EstimatorOptions {
 };
 
 class EstimatorBackend;
+class ScenePool;
 
 /** Estimates the criticality of scenes. Reuses its buffers across calls; not thread-safe (use
- *  one Estimator per thread). */
+ *  one Estimator per thread). With the cpu backend and threads() > 1 it also keeps a pool of
+ *  threads() - 1 threads for batches (EstimateBatch), started at the first batch that needs
+ *  it and stopped with the Estimator. */
 class Estimator {
  public:
   /** @throws InputError when params are invalid, or the cuda backend is asked for and no
@@ -72,8 +76,20 @@ class Estimator {
   Result Estimate(const Scene& scene);
 
   /** Estimates many scenes (e.g. every vehicle of a network as ego) with the same params and
-   *  backend, in one call: the cuda backend runs the whole batch in one set of kernel launches.
-   *  Results are those of Estimate() on each scene; module times are per-scene means. */
+   *  backend, in one call; results[k] belongs to scenes[k] and is what Estimate(scenes[k])
+   *  gives, bit for bit, whatever the backend's split of the work (only Result::times differ).
+   *  - cuda: the whole batch in one set of kernel launches; module times are per-scene means.
+   *  - cpu with threads() > 1: the scenes are spread over threads() workers (this thread and
+   *    a persistent pool, cpu/scene_pool.h), each with its own single-threaded estimator,
+   *    taking chunks of 2 scenes in turn; times are each scene's own. A batch of one scene
+   *    gets every thread, as Estimate() does, unless its hypothesis set is small (ego
+   *    hypothesis steps profiles * TimeSteps * LateralSamplesThreeLanes^instants < 5e4): then
+   *    one thread, which is faster than splitting so little work.
+   *  - reference, or cpu on one thread: one scene after the other; street and total times
+   *    are per-scene means.
+   *  @throws InputError or WorkloadError as Estimate() does, for the first failing scene in
+   *  batch order (on the cpu pool, the rest of the batch is then abandoned; the Estimator
+   *  stays usable). */
   std::vector<Result> EstimateBatch(const std::vector<Scene>& scenes);
 
   const Params& params() const { return params_; }
@@ -85,6 +101,7 @@ class Estimator {
   Params params_;
   EstimatorOptions options_;
   std::unique_ptr<EstimatorBackend> backend_;
+  std::unique_ptr<ScenePool> pool_;  ///< cpu batches on threads() > 1, made at the first one
 };
 
 }  // namespace criticality

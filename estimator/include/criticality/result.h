@@ -105,6 +105,12 @@ struct Result {
    *  (1..time_steps) of ego trajectory i against CO trajectory j at [i * co_trajectories + j],
    *  0 when the pair never collides. */
   std::vector<std::int16_t> first_collision_step;
+  /** True when the exact reach shortcut (EstimatorOptions::reach_shortcut) answered this
+   *  estimate without generating hypothesis trajectories or recognising collisions: no
+   *  collision object was left in reach (every one is out_of_reach, or there is none), so
+   *  p_collision is 0 (only the escape routes' manoeuvres were simulated). Always false with
+   *  the shortcut off. */
+  bool answered_by_reach_shortcut{false};
   WorkCounts counts;
   ModuleTimes times;
 };
