@@ -3,12 +3,31 @@
 #include <iostream>
 #include <string>
 
-#include "plugin/driver.h"
-#include "plugin/driver_options.h"
-#include "plugin/run_summary.h"
+#include "plugin/options/driver_options.h"
+#include "plugin/run/co_simulation.h"
+#include "plugin/run/exit_codes.h"
+#include "plugin/run/run_summary.h"
+#include "plugin/sumo/sumo_world.h"
+
+namespace {
+
+using namespace criticality::plugin;
+
+// SUMO in this process (libsumo), or the running one at --connect (libtraci).
+std::unique_ptr<SumoWorld> OpenSumo(const RunConfig& run) {
+  if (!run.connect.empty()) {
+    const auto colon = run.connect.rfind(':');  // validated by ParseDriverOptions
+    return ConnectLibtraci(run.connect.substr(0, colon), std::stoi(run.connect.substr(colon + 1)));
+  }
+  std::vector<std::string> args{"-c",   run.sumo_config,    "--no-step-log",
+                                "true", "--xml-validation", "never"};
+  args.insert(args.end(), run.sumo_args.begin(), run.sumo_args.end());
+  return StartLibsumo(args);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
-  using namespace criticality::plugin;
   // A SUMO that goes away under --connect must be an error, not a silent SIGPIPE death.
   std::signal(SIGPIPE, SIG_IGN);
   RunSummary summary;
@@ -16,7 +35,7 @@ int main(int argc, char** argv) {
   try {
     const ParseOutcome parsed = ParseDriverOptions(argc, argv);
     if (parsed.exit_now) return parsed.exit_code;  // --help, --version: not a run
-    code = RunDriver(parsed.options, &summary);
+    code = RunDriver(parsed.options, &summary, OpenSumo);
   } catch (...) {  // option parsing (RunDriver never throws)
     summary.exit_code = code = ExitCodeFor(std::current_exception(), &summary.error);
     summary.status = "failed";

@@ -211,7 +211,7 @@ struct Params {
    *  makes the reference brake. */
   double curve_lateral_accel_mps2{5.5};
   /** See curve_speed_reference: normal braking (4.5 m/s^2, AASHTO; the cap of the driver's
-   *  car-following expectation, plugin/car_following.h). */
+   *  car-following expectation, plugin/scenes/car_following.h). */
   double curve_decel_max_mps2{4.5};
 
   // --- Stop obligations (Vehicle::stop_line; the paper is silent: estimator/ALGORITHM.md) ---

@@ -1,0 +1,112 @@
+#include "plugin/act/act_stage.h"
+
+namespace criticality::plugin {
+
+double WarnValue(WarnOn on, const Result& r) {
+  switch (on) {
+    case WarnOn::kPCollision:
+      return r.p_collision;
+    case WarnOn::kPReference:
+      return r.p_reference;
+    case WarnOn::kUnavoidability:
+      return r.unavoidability;
+  }
+  return r.p_collision;
+}
+
+std::string WarnOnName(WarnOn on) {
+  switch (on) {
+    case WarnOn::kPCollision:
+      return "p_collision";
+    case WarnOn::kPReference:
+      return "p_reference";
+    case WarnOn::kUnavoidability:
+      return "unavoidability";
+  }
+  return "?";
+}
+
+std::string ActName(Act act) {
+  switch (act) {
+    case Act::kNone:
+      return "none";
+    case Act::kWarn:
+      return "warn";
+    case Act::kBrake:
+      return "brake";
+  }
+  return "?";
+}
+
+ActStage::ActStage(const ActConfig& config, SumoWorld* world, double step_s)
+    : config_(config),
+      world_(world),
+      episodes_(config.warning),
+      closed_loop_(config.closed_loop, world, step_s) {}
+
+void ActStage::Leaving(const Observation& obs, ActOutcome* out) {
+  for (const EgoEvent& e : obs.ego_events) {
+    if (e.kind == EgoEventKind::kTeleportEnd) closed_loop_.TeleportEnded(e.ego);
+    const bool teleport = e.kind == EgoEventKind::kTeleportStart;
+    if (e.kind != EgoEventKind::kArrive && e.kind != EgoEventKind::kVanish && !teleport) continue;
+    if (episodes_.Leave(e.ego)) {
+      WarningEvent w;
+      w.ego = e.ego;
+      w.change = WarningChange::kClose;
+      out->warnings.push_back(std::move(w));
+    }
+    closed_loop_.Leave(e.ego, teleport);
+  }
+}
+
+void ActStage::Warn(const ObjectSnapshot& ego, const Result& r, double t, double p,
+                    ActOutcome* out) {
+  if (const auto change = episodes_.Update(ego.id, t, p)) {
+    WarningEvent w;
+    w.ego = ego.id;
+    w.change = *change;
+    w.p_collision = p;
+    if (*change == WarningChange::kOpen) {
+      w.x_m = ego.state.x_m;
+      w.y_m = ego.state.y_m;
+      w.edge = ego.edge;
+      const ObjectResult* main = MainObject(r);
+      w.object = main ? main->id : "";
+    }
+    out->warnings.push_back(std::move(w));
+  }
+  world_->Publish(ego.id, p, episodes_.Warning(ego.id));
+}
+
+EgoStep ActStage::Row(const ObjectSnapshot& ego, const Result& r) const {
+  EgoStep step;
+  step.ego = ego.id;
+  step.speed_mps = ego.state.speed_mps;
+  step.p_collision = r.p_collision;
+  step.p_reference = r.p_reference;
+  step.unavoidability = r.unavoidability;
+  step.estimator_ms = r.times.total_ms;
+  step.objects = static_cast<int>(r.objects.size());
+  for (const ObjectResult& obj : r.objects) step.objects_in_reach += obj.out_of_reach ? 0 : 1;
+  step.shortcut = r.answered_by_reach_shortcut;
+  step.acting = closed_loop_.Acting(ego.id);
+  return step;
+}
+
+ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
+                         const std::vector<Result>& results) {
+  ActOutcome out;
+  Leaving(obs, &out);
+  for (size_t k = 0; k < batch.scenes.size(); ++k) {
+    const ObjectSnapshot& ego = batch.EgoOf(k);
+    const Result& r = results[k];
+    const double p = WarnValue(config_.warn_on, r);
+    if (config_.act != Act::kNone) Warn(ego, r, obs.time_s, p, &out);
+    if (config_.act == Act::kBrake)
+      closed_loop_.Step(obs.time_s, ego, batch.scenes[k], r, p, &out.actions);
+    out.steps.push_back(Row(ego, r));
+  }
+  return out;
+}
+
+}  // namespace criticality::plugin

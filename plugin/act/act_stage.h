@@ -1,0 +1,41 @@
+#pragma once
+// Stage 4 of a step: what the driver does with the estimates. Warning episodes on the --warn-on
+// estimate (warning_episodes.h), the criticality published to SUMO (vehicle parameter
+// "criticality", the ego red while warning), and under --act brake the closed loop
+// (closed_loop.h). An ego that arrives, vanishes or starts a teleport ends its episode and its
+// engagement. Every estimated ego gets its row of the step.
+#include <string>
+#include <vector>
+
+#include "criticality/result.h"
+#include "plugin/act/act_config.h"
+#include "plugin/act/act_outcome.h"
+#include "plugin/act/closed_loop.h"
+#include "plugin/act/warning_episodes.h"
+#include "plugin/observe/observation.h"
+#include "plugin/scenes/scene_stage.h"
+#include "plugin/sumo/sumo_world.h"
+
+namespace criticality::plugin {
+
+class ActStage {
+ public:
+  ActStage(const ActConfig& config, SumoWorld* world, double step_s);
+  ActOutcome Run(const Observation& obs, const SceneBatch& batch,
+                 const std::vector<Result>& results);
+  /** Egos whose warning episode is open (to close them when the run ends). */
+  std::vector<std::string> OpenEpisodes() const { return episodes_.Open(); }
+
+ private:
+  /** Egos that left or started a teleport end their episode and engagement. */
+  void Leaving(const Observation& obs, ActOutcome* out);
+  void Warn(const ObjectSnapshot& ego, const Result& r, double t, double p, ActOutcome* out);
+  EgoStep Row(const ObjectSnapshot& ego, const Result& r) const;
+
+  ActConfig config_;
+  SumoWorld* world_;
+  WarningEpisodes episodes_;
+  ClosedLoop closed_loop_;
+};
+
+}  // namespace criticality::plugin

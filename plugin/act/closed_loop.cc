@@ -1,0 +1,297 @@
+#include "plugin/act/closed_loop.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace criticality::plugin {
+namespace {
+
+std::string SpeedModeText(int user) {
+  return "speed mode " + std::to_string(user) + " -> " + std::to_string(user & ~4) +
+         ((user & 4) ? " (bit 2 cleared: up to emergencyDecel)" : " (unchanged)");
+}
+
+std::string Fixed(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%+.2f", x);
+  return b;
+}
+
+}  // namespace
+
+ClosedLoop::ClosedLoop(const ClosedLoopConfig& config, SumoWorld* world, double step_s)
+    : config_(config), world_(world), dt_(step_s) {
+  AvoidancePolicy check(config_.policy);  // throws for a config that cannot work
+}
+
+ClosedLoop::Engagement& ClosedLoop::StateOf(const std::string& ego) {
+  auto it = egos_.find(ego);
+  if (it == egos_.end()) it = egos_.emplace(ego, Engagement(config_.policy)).first;
+  return it->second;
+}
+
+bool ClosedLoop::Acting(const std::string& ego) const {
+  auto it = egos_.find(ego);
+  return it != egos_.end() && it->second.policy.engaged();
+}
+
+ClosedLoop::Phase ClosedLoop::PhaseOf(const std::string& ego) const {
+  auto it = egos_.find(ego);
+  return it == egos_.end() ? Phase::kIdle : it->second.phase;
+}
+
+ClosedLoop::LaneChange ClosedLoop::LaneChangeOf(const std::string& ego) const {
+  auto it = egos_.find(ego);
+  return it == egos_.end() ? LaneChange::kNone : it->second.lane_change;
+}
+
+void ClosedLoop::Leave(const std::string& ego, bool teleport) {
+  auto it = egos_.find(ego);
+  if (teleport && it != egos_.end() && it->second.speed_in_force) {
+    release_after_teleport_.insert(ego);
+  }
+  if (!teleport) release_after_teleport_.erase(ego);
+  if (it != egos_.end()) egos_.erase(it);
+}
+
+void ClosedLoop::TeleportEnded(const std::string& ego) {
+  if (release_after_teleport_.erase(ego)) world_->ReleaseSpeed(ego);
+}
+
+void ClosedLoop::Step(double t, const ObjectSnapshot& ego, const Scene& scene, const Result& r,
+                      double p, std::vector<ActionEvent>* actions) {
+  Engagement& s = StateOf(ego.id);
+  if (s.phase == Phase::kIdle && p < config_.policy.engage_threshold) return;
+  Now n;
+  n.t = t;
+  n.ego = &ego;
+  n.scene = &scene;
+  n.result = &r;
+  n.p = p;
+  n.control = world_->ReadControl(ego.id);
+  switch (s.policy.Step(t, p, MayRelease(n, s))) {
+    case AvoidanceDecision::kIdle:  // only while handing back
+      if (HandBack(ego.id, n.control, n.v())) {
+        s.phase = Phase::kIdle;
+        s.speed_in_force = false;
+      }
+      return;
+    case AvoidanceDecision::kRelease:
+      Release(n, &s, actions);
+      return;
+    case AvoidanceDecision::kEngage:
+      Engage(&s);
+      Control(n, &s, actions);
+      return;
+    case AvoidanceDecision::kHold:
+      Control(n, &s, actions);
+      return;
+  }
+}
+
+bool ClosedLoop::MayRelease(const Now& n, const Engagement& s) const {
+  // The release waits, unless the engagement's lane change is done (the old lane's danger is
+  // gone), while every escape route as safe as the best one that the closed loop can execute
+  // brakes (p, computed with the ego braking, says little about handing back), and at a
+  // standstill while SUMO's own choice is a speed the scenario forces (its driver would drive
+  // on into what stopped it: an emergency brake holds the vehicle then).
+  const VehicleControl& c = n.control;
+  const bool changed_lane = s.lane_change == LaneChange::kDone;
+  const bool still_braking = !changed_lane && !AnyNonBrakingRoute(n.result->escape_routes, c);
+  const bool held_stopped = s.speed_in_force && n.v() < kStandstill && c.forced &&
+                            c.own_speed_mps > n.v() + c.accel_mps2 * dt_ + kJumpMargin;
+  return !still_braking && !held_stopped;
+}
+
+void ClosedLoop::Engage(Engagement* s) const {
+  // A speed of ours still ramping up from the previous engagement stays in force.
+  s->phase = Phase::kEngaged;
+  s->braking_started = false;
+  s->previous_accel = 0.0;
+  s->lane_change = LaneChange::kNone;
+}
+
+ActionEvent ClosedLoop::Row(const Now& n, const std::string& kind,
+                            const EscapeRoute* route) const {
+  ActionEvent a;
+  a.ego = n.ego->id;
+  a.kind = kind;
+  a.speed_mps = a.speed_after_mps = n.v();
+  a.p_collision = n.p;
+  a.lane_before = a.lane_after = n.control.lane;
+  if (route) {
+    a.route = route->ego_trajectory;
+    a.route_collision_probability = route->collision_probability;
+    a.route_probability = route->probability;
+  }
+  return a;
+}
+
+void ClosedLoop::Release(const Now& n, Engagement* s, std::vector<ActionEvent>* actions) {
+  const VehicleControl& c = n.control;
+  // An engagement in which SUMO's own speed stayed the lower and nothing was steered did
+  // nothing to release: no row.
+  const bool acted = s->speed_in_force || s->lane_change != LaneChange::kNone;
+  ActionEvent a = Row(n, "release", nullptr);
+  a.detail = "control handed back";
+  s->phase = Phase::kIdle;
+  if (s->speed_in_force) {
+    a.speed_after_mps = c.own_speed_mps;
+    if (HandBack(n.ego->id, c, n.v())) {
+      s->speed_in_force = false;
+      a.detail += ": speed mode " + std::to_string(c.speed_mode) + " restored, " +
+                  (c.forced ? "the scenario's speed" : "setSpeed(-1)");
+    } else {
+      s->phase = Phase::kHandingBack;
+      a.speed_after_mps = n.v() + c.accel_mps2 * dt_;
+      a.detail += " at the type's accel " + Fixed(c.accel_mps2).substr(1) + " m/s^2 up to the " +
+                  Fixed(c.own_speed_mps).substr(1) + " m/s the scenario forces (speed mode " +
+                  std::to_string(c.speed_mode) + " then restored)";
+    }
+  }
+  if (s->lane_change == LaneChange::kPending) a.detail += "; the pending lane change dropped";
+  if (acted) actions->push_back(a);
+  s->braking_started = false;
+  s->lane_change = LaneChange::kNone;
+  s->previous_accel = 0.0;
+}
+
+const EscapeRoute* ClosedLoop::Route(const Now& n, const Engagement& s, const LaneChanging& lc,
+                                     LateralPlan* plan) const {
+  const VehicleControl& c = n.control;
+  const std::vector<EscapeRoute>& routes = n.result->escape_routes;
+  // The route's acceleration is followed after its lane change too (its lane change is not
+  // repeated); only --no-steer restricts the choice to routes that keep their lane.
+  const EscapeRoute* route = ChooseRoute(routes, !config_.no_steer);
+  *plan = route ? LateralPlanOf(*route, c.lane_width_m) : LateralPlan{};
+  const int target = c.lane_index + plan->direction;
+  if (plan->direction != 0 && s.lane_change == LaneChange::kNone && !lc.sublane &&
+      (target < 0 || target >= c.lanes)) {
+    route = ChooseRoute(routes, false);  // no such lane (e.g. counter traffic)
+    *plan = route ? LateralPlanOf(*route, c.lane_width_m) : LateralPlan{};
+  }
+  return route;
+}
+
+void ClosedLoop::Control(const Now& n, Engagement* s, std::vector<ActionEvent>* actions) {
+  // A threat from behind (the object contributing most is behind the ego): braking of ours
+  // would only raise its closing speed, so SUMO keeps the speed, and a lane change out of its
+  // way starts at once instead of when the route crosses the boundary.
+  const bool threat_behind = MainThreatBehind(*n.scene, *n.result);
+  const LaneChanging lc = world_->LaneChangingModel();
+  LateralPlan plan;
+  const EscapeRoute* route = Route(n, *s, lc, &plan);
+  if (route && plan.direction != 0 && s->lane_change == LaneChange::kNone)
+    Steer(n, *route, plan, lc, threat_behind, s, actions);
+  if (s->lane_change == LaneChange::kPending && n.t + 1e-9 >= s->pending.at_s) {
+    s->lane_change = LaneChange::kDone;
+    world_->ChangeLane(n.ego->id, s->pending.lane, s->pending.hold_s);
+    s->pending.row.speed_mps = s->pending.row.speed_after_mps = n.v();
+    actions->push_back(s->pending.row);
+  }
+  CommandSpeed(n, route, threat_behind, s, actions);
+}
+
+void ClosedLoop::Steer(const Now& n, const EscapeRoute& route, const LateralPlan& plan,
+                       const LaneChanging& lc, bool threat_behind, Engagement* s,
+                       std::vector<ActionEvent>* actions) {
+  const VehicleControl& c = n.control;
+  ActionEvent a = Row(n, "steer", &route);
+  const std::string lcm = "lane-change mode " + std::to_string(c.lane_change_mode) + " kept";
+  char b[200];
+  if (lc.sublane) {
+    world_->ChangeSublane(n.ego->id, plan.final_offset_m - c.lateral_offset_m);
+    s->lane_change = LaneChange::kDone;
+    a.lane_after = c.lane + " " + Fixed(plan.final_offset_m) + " m";
+    std::snprintf(b, sizeof b,
+                  "sublane offset: the route's takes %.1f s, SUMO's moves at the type's "
+                  "maxSpeedLat; ",
+                  plan.duration_s);
+    a.detail = b + lcm;
+    actions->push_back(a);
+    return;
+  }
+  // SUMO moves a changing vehicle over lanechange.duration (0: in one step): start so that it
+  // crosses into the target lane when the route does.
+  const int target = c.lane_index + plan.direction;
+  s->lane_change = LaneChange::kPending;
+  s->pending.at_s = threat_behind ? n.t : n.t + std::max(0.0, plan.cross_s - 0.5 * lc.duration_s);
+  s->pending.lane = target;
+  s->pending.hold_s = route.time_s.empty() ? 1.0 : route.time_s.back();
+  a.lane_after = c.lane.substr(0, c.lane.rfind('_')) + "_" + std::to_string(target);
+  std::snprintf(b, sizeof b,
+                "lane change: the route crosses at %.1f s, done at %.1f s; SUMO's takes "
+                "%.1f s (lanechange.duration); ",
+                plan.cross_s, plan.duration_s, lc.duration_s);
+  a.detail = b + lcm;
+  if (threat_behind) a.detail += "; the main threat comes from behind: at once, no braking";
+  s->pending.row = a;
+}
+
+void ClosedLoop::CommandSpeed(const Now& n, const EscapeRoute* route, bool threat_behind,
+                              Engagement* s, std::vector<ActionEvent>* actions) {
+  const VehicleControl& c = n.control;
+  // Mitigation: when even the followed route probably collides, the lowest impact speed is
+  // what is left to reach: brake as hard as the type allows; not when the main threat comes
+  // from behind (braking would only raise its closing speed).
+  const bool mitigate = route && route->collision_probability >= kMitigation;
+  SpeedInputs in;
+  in.speed_mps = n.v();
+  in.own_speed_mps = c.own_speed_mps;
+  in.route_accel_mps2 = route && !mitigate ? route->profile_accel_mps2 : -c.emergency_decel_mps2;
+  in.emergency_decel_mps2 = c.emergency_decel_mps2;
+  in.elapsed_s = n.t - s->policy.engaged_since_s();
+  in.previous_accel_mps2 = s->previous_accel;
+  in.active = s->braking_started;
+  const SpeedCommand cmd =
+      threat_behind ? SpeedCommand{} : ClosedLoopSpeed(in, config_.brake, dt_);
+  if (!cmd.command) {
+    if (s->speed_in_force && HandBack(n.ego->id, c, n.v())) s->speed_in_force = false;
+    return;
+  }
+  world_->CommandSpeed(n.ego->id, cmd.speed_mps);
+  s->previous_accel = cmd.accel_mps2;
+  if (!s->braking_started) {
+    ActionEvent a = Row(n, "brake", route);
+    a.accel_mps2 = cmd.accel_mps2;
+    a.speed_after_mps = cmd.speed_mps;
+    a.detail = SpeedModeText(c.speed_mode);
+    if (!route) a.detail += "; no escape route to follow: emergencyDecel";
+    if (mitigate) a.detail += "; the route probably collides: emergencyDecel (mitigation)";
+    if (threat_behind)
+      a.detail += "; the route probably collides, from behind: its own deceleration, no mitigation";
+    if (c.forced) a.detail += "; the scenario forces " + Fixed(c.own_speed_mps).substr(1) + " m/s";
+    actions->push_back(a);
+  }
+  s->braking_started = s->speed_in_force = true;
+}
+
+bool ClosedLoop::Executable(const EscapeRoute& e, const VehicleControl& c) const {
+  const int direction = LateralPlanOf(e, c.lane_width_m).direction;
+  if (direction == 0) return true;
+  if (config_.no_steer) return false;
+  const int target = c.lane_index + direction;
+  return target >= 0 && target < c.lanes;  // a lane of the same edge (not counter traffic)
+}
+
+bool ClosedLoop::AnyNonBrakingRoute(const std::vector<EscapeRoute>& ranked,
+                                    const VehicleControl& c) const {
+  if (ranked.empty()) return true;  // nothing says braking is needed
+  for (const EscapeRoute& e : ranked) {
+    if (e.collision_probability > ranked.front().collision_probability + kSameRisk) break;
+    if (e.profile_accel_mps2 >= -kBrakingAccel && Executable(e, c)) return true;
+  }
+  return false;
+}
+
+bool ClosedLoop::HandBack(const std::string& ego, const VehicleControl& c, double v) {
+  const double reach = v + c.accel_mps2 * dt_;
+  if (c.forced && c.own_speed_mps > reach + kJumpMargin) {
+    world_->CommandSpeed(ego, reach);
+    return false;
+  }
+  world_->ReleaseSpeed(ego);
+  return true;
+}
+
+}  // namespace criticality::plugin

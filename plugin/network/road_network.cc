@@ -1,0 +1,36 @@
+#include "plugin/network/road_network.h"
+
+#include <algorithm>
+
+namespace criticality::plugin {
+
+bool Allows(RoadNetwork& network, const std::string& lane, const std::string& vclass) {
+  const std::vector<std::string>& allowed = network.AllowedClasses(lane);
+  return allowed.empty() || std::find(allowed.begin(), allowed.end(), vclass) != allowed.end();
+}
+
+bool PedestriansOnly(RoadNetwork& network, const std::string& lane) {
+  const std::vector<std::string>& allowed = network.AllowedClasses(lane);
+  return allowed.size() == 1 && allowed[0] == "pedestrian";
+}
+
+std::string NextLaneOnRoute(RoadNetwork& network, const std::string& lane,
+                            const std::vector<std::string>& route, int* route_index) {
+  const std::vector<LaneLink>& links = network.Links(lane);
+  const std::string edge = network.Lane(lane).edge;
+  if (IsInternal(edge)) {  // inside a junction: the internal lane leads to exactly one lane
+    return links.empty() ? "" : links.front().lane;
+  }
+  int k = *route_index;
+  while (k < static_cast<int>(route.size()) && route[k] != edge) ++k;
+  if (k + 1 >= static_cast<int>(route.size())) return "";
+  for (const LaneLink& l : links) {
+    if (network.Lane(l.lane).edge == route[k + 1]) {
+      *route_index = k + 1;
+      return l.lane;
+    }
+  }
+  return "";
+}
+
+}  // namespace criticality::plugin

@@ -1,0 +1,248 @@
+#include "plugin/options/driver_options.h"
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+
+#include "plugin/options/config_file.h"
+#include "plugin/options/option_table.h"
+
+namespace po = boost::program_options;
+namespace fs = std::filesystem;
+
+namespace criticality::plugin {
+namespace {
+
+[[noreturn]] void Bad(const std::string& message) { throw std::invalid_argument(message); }
+
+std::string Number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+// The option a Params field is set by, for messages in the user's terms.
+std::string WithOptionNames(std::string msg) {
+  const std::pair<const char*, const char*> names[] = {
+      {"params.horizon_s", "--horizon"},
+      {"params.step_s", "--step"},
+      {"params.profiles", "--profiles"},
+      {"params.own_lane_samples", "--own-lane-samples"},
+      {"params.neighbour_lane_samples", "--neighbour-lane-samples"},
+      {"options.threads", "--threads"}};
+  for (const auto& [field, option] : names) {
+    for (size_t at = msg.find(field); at != std::string::npos; at = msg.find(field, at)) {
+      msg.replace(at, std::strlen(field), option);
+    }
+  }
+  return msg;
+}
+
+// The command line: an option SUMO knows, given before "--", gets that hint.
+void StoreCommandLine(const std::vector<const char*>& own, const OptionTable& table,
+                      po::variables_map* vm) {
+  try {
+    po::store(po::parse_command_line(static_cast<int>(own.size()), own.data(), table.all()), *vm);
+  } catch (const po::unknown_option& e) {
+    std::string name = e.get_option_name();
+    while (!name.empty() && name[0] == '-') name.erase(0, 1);
+    if (name == "configuration-file" || name == "sumocfg" || name == "sumo-cfg") {
+      Bad("unrecognised option '--" + name +
+          "': the SUMO configuration is given with -c FILE (--sumo-config FILE)");
+    }
+    if (SumoKnowsOption(name)) {
+      Bad("unrecognised option '--" + name +
+          "': it is a SUMO option; give SUMO's options after '--', e.g. sumo-criticality ... -- "
+          "--" +
+          name + " VALUE");
+    }
+    throw;
+  }
+}
+
+// Command line, then the --config file (command-line values win). Returns false when --help or
+// --version was printed.
+bool Store(const std::vector<const char*>& own, OptionTable* table, po::variables_map* vm) {
+  try {
+    StoreCommandLine(own, *table, vm);
+    if (vm->count("version")) {
+      std::cout << "sumo-criticality " << CRIT_VERSION << " (built with SUMO " << CRIT_SUMO_VERSION
+                << " headers)\n";
+      return false;
+    }
+    if (vm->count("help")) {
+      std::cout << HelpText(*table);
+      return false;
+    }
+    if (vm->count("config")) {
+      const std::string config = (*vm)["config"].as<std::string>();  // stored only at notify()
+      CheckConfigFile(config, table->all());
+      std::ifstream in(config);
+      po::store(po::parse_config_file(in, table->all()), *vm);
+    }
+    po::notify(*vm);
+  } catch (const po::error& e) {
+    Bad(std::string(e.what()) + " (see --help)");
+  }
+  return true;
+}
+
+// A sumo-config given in the config file is relative to that file's folder.
+void SumoConfigRelativeToConfigFile(const OptionTable& table, const po::variables_map& vm,
+                                    RunConfig* run) {
+  const std::string& config = table.raw.config;
+  if (!vm.count("config") || run->sumo_config.empty() || fs::path(run->sumo_config).is_absolute() ||
+      vm["sumo-config"].defaulted())
+    return;
+  std::ifstream in(config);
+  po::variables_map only_file;
+  po::store(po::parse_config_file(in, table.all()), only_file);
+  if (only_file.count("sumo-config") &&
+      only_file["sumo-config"].as<std::string>() == run->sumo_config) {
+    run->sumo_config = RelativeToConfig(config, run->sumo_config);
+  }
+}
+
+void CheckSimulation(RunConfig* run, const RawOptions& raw, const po::variables_map& vm) {
+  for (const std::string& e : raw.events) run->events.push_back(ParseEvent(e));
+  run->progress = !raw.no_progress;
+  if (!vm["end"].defaulted() && !(std::isfinite(run->end_time_s) && run->end_time_s >= 0.0)) {
+    Bad("--end " + Number(run->end_time_s) + ": must be a finite time >= 0 s");
+  }
+  if (!run->connect.empty() && !run->sumo_args.empty()) {
+    Bad("options after '--' go to the SUMO that sumo-criticality starts; under --connect SUMO "
+        "is already running: give them to it (sumo -c ... --remote-port PORT " +
+        run->sumo_args.front() + " ...)");
+  }
+  if (!raw.expect.empty() && raw.expect != "collision" && raw.expect != "no-collision")
+    Bad("--expect '" + raw.expect + "': use collision or no-collision");
+  run->expect = raw.expect;
+  if (!run->expect_partner.empty() && run->expect != "collision")
+    Bad("--expect-partner needs --expect collision");
+  if (!std::isfinite(run->quiet_until_s) || run->quiet_until_s < 0.0)
+    Bad("--quiet-until must be a finite time >= 0 s");
+  if (run->sumo_config.empty() && run->connect.empty())
+    Bad("no simulation: give -c/--sumo-config FILE (or --connect HOST:PORT)");
+  if (!run->sumo_config.empty() && run->connect.empty() && !fs::exists(run->sumo_config))
+    Bad("--sumo-config '" + run->sumo_config + "': no such file");
+  if (!run->connect.empty()) {
+    const auto colon = run->connect.rfind(':');
+    int port = 0;
+    try {
+      port = colon == std::string::npos ? 0 : std::stoi(run->connect.substr(colon + 1));
+    } catch (const std::exception&) {
+    }
+    if (colon == std::string::npos || colon == 0 || port <= 0 || port > 65535)
+      Bad("--connect '" + run->connect + "': expected HOST:PORT, e.g. localhost:8813");
+  }
+  if (run->output.empty()) Bad("no --output FILE.sqlite given");
+}
+
+// The preset, with the estimator options given explicitly on top of it.
+void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOptions* o) {
+  o->estimator.backend = ParseBackend(raw.backend);
+  o->estimator.reach_shortcut = !raw.no_shortcut;
+  Params p = ParamsPreset(raw.preset);  // InputError names the accepted presets
+  auto given = [&](const char* name) { return vm.count(name) && !vm[name].defaulted(); };
+  if (given("profiles")) p.profiles = o->params.profiles;
+  if (given("own-lane-samples")) p.own_lane_samples = o->params.own_lane_samples;
+  if (given("neighbour-lane-samples")) p.neighbour_lane_samples = o->params.neighbour_lane_samples;
+  if (given("horizon")) {  // the path sample instants keep their share of the horizon
+    for (double& t : p.path_sample_times_s) t *= o->params.horizon_s / p.horizon_s;
+    p.horizon_s = o->params.horizon_s;
+  }
+  if (given("step")) p.step_s = o->params.step_s;
+  if (raw.no_lateral_controller) p.lateral_controller = false;
+  if (raw.no_road_model) p.road_model = false;
+  if (raw.no_car_following) p.expected_accel_reference = false;
+  o->params = p;
+  if (o->estimator.threads < 0) Bad("--threads must be >= 0");
+  try {
+    ValidateParams(o->params);
+  } catch (const std::invalid_argument& e) {  // InputError names the Params field
+    Bad(WithOptionNames(e.what()));
+  }
+}
+
+void Threshold(const char* option, double t) {
+  if (!(t > 0.0 && t <= 1.0)) Bad(std::string(option) + " " + Number(t) + ": must be in (0, 1]");
+}
+
+void Acting(const RawOptions& raw, ActConfig* act) {
+  if (raw.act == "none")
+    act->act = Act::kNone;
+  else if (raw.act == "warn")
+    act->act = Act::kWarn;
+  else if (raw.act == "brake")
+    act->act = Act::kBrake;
+  else
+    Bad("--act '" + raw.act + "': use none, warn or brake");
+  if (raw.warn_on == "p_collision")
+    act->warn_on = WarnOn::kPCollision;
+  else if (raw.warn_on == "p_reference")
+    act->warn_on = WarnOn::kPReference;
+  else if (raw.warn_on == "unavoidability")
+    act->warn_on = WarnOn::kUnavoidability;
+  else
+    Bad("--warn-on '" + raw.warn_on + "': use p_collision, p_reference or unavoidability");
+  WarningConfig& w = act->warning;
+  AvoidancePolicyConfig& p = act->closed_loop.policy;
+  Threshold("--warn-threshold", w.threshold);
+  Threshold("--brake-threshold", p.engage_threshold);
+  if (w.release < 0.0) w.release = 0.8 * w.threshold;
+  if (w.release > w.threshold) Bad("--warn-release must not exceed --warn-threshold");
+  if (!(w.release_after_s >= 0.0) || !std::isfinite(w.release_after_s))
+    Bad("--warn-release-after must be >= 0 s");
+  if (p.release_threshold < 0.0) p.release_threshold = 0.5 * p.engage_threshold;
+  if (p.release_threshold > p.engage_threshold)
+    Bad("--brake-release must not exceed --brake-threshold");
+  if (!(p.min_hold_s >= 0.0) || !(p.release_after_s >= 0.0))
+    Bad("--act-hold and --act-release-after must be >= 0 s");
+}
+
+// What the other stages take from the estimator's final parameters; the observe checks.
+void Derive(DriverOptions* o) {
+  ObserveConfig& observe = o->observe;
+  if (observe.egos.empty() && !observe.all_vehicles)
+    Bad("no ego: give --ego ID (repeatable) or --all-vehicles");
+  if (!(observe.range_m > 0.0)) Bad("--range must be > 0");
+  observe.attached = !o->run.connect.empty();
+  SceneConfig& scenes = o->scenes;
+  scenes.range_m = observe.range_m;
+  scenes.horizon_s = o->params.horizon_s;
+  scenes.max_accel_mps2 = o->params.vehicle_accel_max_mps2;
+  scenes.lane_sampling = LaneSamplingFor(o->params);
+  o->act.closed_loop.brake.latency_s = o->params.latency_s;  // the escape routes' braking
+  o->act.closed_loop.brake.jerk_mps3 = o->params.jerk_mps3;
+}
+
+}  // namespace
+
+ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
+  ParseOutcome out;
+  DriverOptions& o = out.options;
+  // Everything after "--" goes to SUMO untouched.
+  std::vector<const char*> own{argv[0]};
+  int i = 1;
+  for (; i < argc && std::string(argv[i]) != "--"; ++i) own.push_back(argv[i]);
+  for (++i; i < argc; ++i) o.run.sumo_args.push_back(argv[i]);
+  for (int k = 0; k < argc; ++k) o.run.command_line += (k ? " " : "") + std::string(argv[k]);
+
+  OptionTable table(&o);
+  po::variables_map vm;
+  if (!Store(own, &table, &vm)) {
+    out.exit_now = true;
+    return out;
+  }
+  SumoConfigRelativeToConfigFile(table, vm, &o.run);
+  CheckSimulation(&o.run, table.raw, vm);
+  Acting(table.raw, &o.act);
+  Estimation(table.raw, vm, &o);
+  Derive(&o);
+  return out;
+}
+
+}  // namespace criticality::plugin

@@ -1,0 +1,173 @@
+#include "plugin/options/option_table.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace po = boost::program_options;
+
+namespace criticality::plugin {
+namespace {
+
+// A number as --help shows its default: 0.9, not 0.90000000000000002.
+std::string Shown(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+template <typename T>
+po::typed_value<T>* Value(T* target) {
+  return po::value(target)->default_value(*target, Shown(*target));
+}
+
+}  // namespace
+
+OptionTable::OptionTable(DriverOptions* o) {
+  General();
+  Simulation(o);
+  Acting(o);
+  Estimator(o);
+  Output(o);
+}
+
+void OptionTable::General() {
+  po::options_description g("General");
+  g.add_options()("help,h", "show this help and exit")(
+      "version", "show the version (and the SUMO it was built for) and exit")(
+      "config", po::value(&raw.config),
+      "read further options from FILE (same names, one 'name = value' per line; a scenario's "
+      "scenario.cfg). Paths in it are relative to its folder. Command-line values win.");
+  all_.add(g);
+}
+
+void OptionTable::Simulation(DriverOptions* o) {
+  po::options_description s("Simulation");
+  s.add_options()("sumo-config,c", po::value(&o->run.sumo_config),
+                  "SUMO configuration (.sumocfg) to run in-process (libsumo)")(
+      "connect", po::value(&o->run.connect),
+      "HOST:PORT of a SUMO or sumo-gui already running with --remote-port PORT; attach to it "
+      "through libtraci instead of running SUMO in-process")(
+      "ego", po::value(&o->observe.egos)->composing(),
+      "vehicle ID whose criticality is estimated (repeatable)")(
+      "all-vehicles", po::bool_switch(&o->observe.all_vehicles), "every vehicle present is an ego")(
+      "event", po::value(&raw.events)->composing(),
+      "scripted event 'TIME TARGET ACTION ARGS' (repeatable; usually in a scenario.cfg). ACTION: "
+      "speed-mode VEH BITS | lane-change-mode VEH BITS | speed VEH MPS | slow-down VEH MPS SEC | "
+      "lane-change VEH INDEX SEC | param VEH KEY VALUE | person-speed PERSON MPS")(
+      "end", po::value(&o->run.end_time_s)->default_value(-1.0, "when SUMO ends"),
+      "stop at this simulated time (s)")(
+      "expect", po::value(&raw.expect),
+      "scenario expectation, reported in the summary: collision | no-collision")(
+      "expect-partner", po::value(&o->run.expect_partner),
+      "scenario expectation: ID of the vehicle or person the ego collides with")(
+      "quiet-until", Value(&o->run.quiet_until_s),
+      "scenario metadata: end of the quiet phase (s); a warning that starts earlier is a false "
+      "alarm")("category", po::value(&o->run.category),
+               "scenario metadata for evaluations: static-object, moving-object, pedestrian or "
+               "free (collision-free)");
+  all_.add(s);
+}
+
+void OptionTable::Acting(DriverOptions* o) {
+  WarningConfig& w = o->act.warning;
+  AvoidancePolicyConfig& p = o->act.closed_loop.policy;
+  po::options_description a("Acting on the estimate");
+  a.add_options()(
+      "act", po::value(&raw.act)->default_value(raw.act),
+      "none: only record; warn: record warning episodes, publish the criticality as vehicle "
+      "parameter 'criticality' and colour the ego red while warning; brake: warn and also take "
+      "control (plugin/README.md, Closed loop): from p >= brake threshold follow the best "
+      "escape route (its braking, and its lane change unless --no-steer), never braking less "
+      "than SUMO would; hand control back after --act-hold once p stays below --brake-release "
+      "for --act-release-after")(
+      "warn-on", po::value(&raw.warn_on)->default_value(raw.warn_on),
+      "the estimate the warning reads: p_collision (the paper's p_cra: the probability that the "
+      "scene ends in a collision of the ego, over all its hypotheses), p_reference (if the ego "
+      "keeps its most probable course) or unavoidability (the least colliding ego hypothesis: 1 "
+      "= nothing helps)")("warn-threshold", Value(&w.threshold),
+                          "value of the --warn-on estimate that starts a warning episode")(
+      "warn-release", po::value(&w.release)->default_value(-1.0, "0.8 x warn threshold"),
+      "value below which a warning episode ends (hysteresis)")(
+      "warn-release-after", Value(&w.release_after_s),
+      "seconds the estimate must stay below --warn-release before the episode ends (a one-step "
+      "dip does not split a warning; 0: end at the first step below)")(
+      "brake-threshold", Value(&p.engage_threshold),
+      "value of the --warn-on estimate at which --act brake takes control")(
+      "brake-release",
+      po::value(&p.release_threshold)->default_value(-1.0, "0.5 x brake threshold"),
+      "value of the --warn-on estimate below which --act brake may hand control back "
+      "(hysteresis)")("act-hold", Value(&p.min_hold_s),
+                      "seconds --act brake keeps control at least, whatever the estimate")(
+      "act-release-after", Value(&p.release_after_s),
+      "seconds the estimate must stay below --brake-release before control is handed back")(
+      "no-steer", po::bool_switch(&o->act.closed_loop.no_steer),
+      "--act brake only brakes: follows the best escape route that keeps its lane");
+  all_.add(a);
+}
+
+void OptionTable::Estimator(DriverOptions* o) {
+  Params& p = o->params;
+  po::options_description e("Estimator");
+  e.add_options()("backend", po::value(&raw.backend)->default_value(raw.backend),
+                  "reference | cpu | cuda | auto (cuda when a GPU is usable, else cpu)")(
+      "preset", po::value(&raw.preset)->default_value(raw.preset),
+      "estimator parameters to start from: default (drivable hypotheses, naturalistic scores) "
+      "or paper-literal (the paper's models and our first scoring, for comparisons; "
+      "plugin/README.md says which of the driver's own choices stay on); the options below "
+      "change them further")(
+      "no-lateral-controller", po::bool_switch(&raw.no_lateral_controller),
+      "ablation (paper Sec. V-A): no lateral controller, constant open-loop steering per path "
+      "section, so hypotheses may leave the road")(
+      "no-road-model", po::bool_switch(&raw.no_road_model),
+      "ablation (paper Sec. V-A): ignore SUMO's lanes; every vehicle gets virtual lanes along "
+      "its heading")(
+      "no-car-following", po::bool_switch(&raw.no_car_following),
+      "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
+      "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(
+      "threads", po::value(&o->estimator.threads)->default_value(0, "0 = all cores"),
+      "estimator threads")("profiles", Value(&p.profiles),
+                           "acceleration/slip profiles per object (paper: 6 or 5)")(
+      "own-lane-samples", Value(&p.own_lane_samples),
+      "lateral path samples across the own lane (paper: 3)")(
+      "neighbour-lane-samples", Value(&p.neighbour_lane_samples),
+      "lateral path samples across each neighbouring lane (paper: 2); ego paths = samples^3")(
+      "horizon", Value(&p.horizon_s),
+      "prediction horizon (s); the path sample instants (paper: 1.0, 1.5, 2.0 s of 2 s) scale "
+      "with it")("step", Value(&p.step_s), "prediction step (s)")(
+      "range", Value(&o->observe.range_m),
+      "vehicles and pedestrians within this distance of an ego are considered (m)")(
+      "no-reach-shortcut", po::bool_switch(&raw.no_shortcut),
+      "estimate objects that cannot reach the ego within the horizon, and egos with no object "
+      "in reach, in full (the exact shortcut changes no result; this is for checking that)");
+  all_.add(e);
+}
+
+void OptionTable::Output(DriverOptions* o) {
+  po::options_description out("Output");
+  out.add_options()("output", po::value(&o->run.output),
+                    "results database (SQLite) to create; must not exist")(
+      "record-scenes", po::value(&o->record.scene_folder),
+      "write every estimated scene to DIR as a scene file that 'criticality-bench --scene-file' "
+      "replays without SUMO")("no-progress", po::bool_switch(&raw.no_progress),
+                              "no progress line even on a terminal");
+  all_.add(out);
+}
+
+std::string HelpText(const OptionTable& table) {
+  std::ostringstream o;
+  o << "sumo-criticality: runs SUMO and estimates, every step, each ego's collision "
+       "probability with the multi-hypothesis algorithm; records steps, warnings, "
+       "actions and SUMO's collisions in SQLite.\n\n"
+       "Usage: sumo-criticality -c scenario.sumocfg --ego ego0 --act warn --output "
+       "run.sqlite [-- SUMO options]\n"
+       "       sumo-criticality --config scenarios/rear_end/scenario.cfg --output "
+       "run.sqlite\n"
+    << table.all()
+    << "\nThe last line of standard output, on every exit, is a JSON summary. Exit "
+       "codes: 0 done, 1 internal error, 2 bad options or input, 3 SUMO error, 4 results "
+       "could not be written, 5 ego error (a named ego SUMO never loads, or a person), 130 "
+       "interrupted (SIGINT), 143 terminated (SIGTERM).\n";
+  return o.str();
+}
+
+}  // namespace criticality::plugin

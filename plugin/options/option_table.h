@@ -1,0 +1,48 @@
+#pragma once
+// The table of sumo-criticality's options (what --help lists), bound to where each value goes:
+// straight into DriverOptions where the types match, into RawOptions where a text or a switch
+// still has to be interpreted (plugin/options/driver_options.cc).
+#include <boost/program_options.hpp>
+#include <string>
+#include <vector>
+
+#include "plugin/options/driver_options.h"
+
+namespace criticality::plugin {
+
+/** Values parsed as given, interpreted after parsing. */
+struct RawOptions {
+  std::string config;  ///< --config FILE
+  std::string act{"warn"};
+  std::string backend{"cpu"};
+  std::string warn_on{"p_collision"};
+  std::string expect;
+  std::string preset{"default"};
+  std::vector<std::string> events;
+  bool no_lateral_controller{false}, no_road_model{false}, no_car_following{false};
+  bool no_progress{false}, no_shortcut{false};
+};
+
+/** Not copyable or movable: the table points into `raw` and the options it was built for. */
+class OptionTable {
+ public:
+  explicit OptionTable(DriverOptions* options);
+  OptionTable(const OptionTable&) = delete;
+  OptionTable& operator=(const OptionTable&) = delete;
+  const boost::program_options::options_description& all() const { return all_; }
+  RawOptions raw;
+
+ private:
+  void General();
+  void Simulation(DriverOptions* o);
+  void Acting(DriverOptions* o);
+  void Estimator(DriverOptions* o);
+  void Output(DriverOptions* o);
+
+  boost::program_options::options_description all_;
+};
+
+/** --help's text. */
+std::string HelpText(const OptionTable& table);
+
+}  // namespace criticality::plugin

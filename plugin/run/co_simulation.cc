@@ -1,0 +1,326 @@
+#include "plugin/run/co_simulation.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+
+#include "plugin/act/act_stage.h"
+#include "plugin/estimate/estimate_stage.h"
+#include "plugin/observe/observe_stage.h"
+#include "plugin/record/record_stage.h"
+#include "plugin/record/results_db.h"
+#include "plugin/run/exit_codes.h"
+#include "plugin/scenes/scene_stage.h"
+#include "plugin/script/event_script.h"
+
+namespace fs = std::filesystem;
+
+namespace criticality::plugin {
+namespace {
+
+std::atomic<int> g_signal{0};
+extern "C" void OnSignal(int sig) {
+  g_signal = sig;
+  std::signal(sig, SIG_DFL);  // a second one ends the process at once
+}
+
+std::string Join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
+  return s;
+}
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+// Resident memory now, from /proc (0 where there is none).
+double RssMb() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0.0;
+  long pages = 0, resident = 0;
+  const int n = std::fscanf(f, "%ld %ld", &pages, &resident);
+  std::fclose(f);
+  return n == 2 ? resident * (sysconf(_SC_PAGESIZE) / 1048576.0) : 0.0;
+}
+
+double MaxRssMb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;  // KiB on Linux
+}
+
+double CpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// --record-scenes: a new or empty folder (scene files of different runs must not mix).
+void PrepareSceneFolder(const std::string& dir) {
+  std::error_code ec;
+  if (fs::exists(dir, ec)) {
+    if (!fs::is_directory(dir, ec))
+      throw std::invalid_argument("--record-scenes '" + dir + "' is a file, not a folder");
+    if (!fs::is_empty(dir, ec)) {
+      throw std::invalid_argument("--record-scenes '" + dir +
+                                  "' is not empty; give a new or empty folder");
+    }
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw std::invalid_argument("--record-scenes '" + dir + "': " + ec.message());
+}
+
+// The wall time of each stage of one step, and where they go.
+struct StepClock {
+  Clock::time_point t[7];
+  void Into(StepTimeRow* row) const {
+    row->sumo_ms = 1e3 * Seconds(t[1] - t[0]);
+    row->observe_ms = 1e3 * Seconds(t[2] - t[1]);
+    row->scenes_ms = 1e3 * Seconds(t[3] - t[2]);
+    row->estimate_ms = 1e3 * Seconds(t[4] - t[3]);
+    row->act_ms = 1e3 * Seconds(t[5] - t[4]);
+    row->record_ms = 1e3 * Seconds(Clock::now() - t[5]);
+  }
+  void Into(StageTimes* st) const {
+    st->sumo_s += Seconds(t[1] - t[0]);
+    st->observe_s += Seconds(t[2] - t[1]);
+    st->scenes_s += Seconds(t[3] - t[2]);
+    st->estimate_s += Seconds(t[4] - t[3]);
+    st->act_s += Seconds(t[5] - t[4]);
+    st->record_s += Seconds(t[6] - t[5]);
+  }
+};
+
+// One run: SUMO, the results database and the five stages, stepped until the run ends.
+class CoSimulation {
+ public:
+  CoSimulation(const DriverOptions& options, RunSummary* summary, const OpenWorld& open)
+      : o_(options), sum_(*summary), open_(open), wall0_(Clock::now()) {
+    sum_.category = o_.run.category;
+  }
+  ~CoSimulation() {
+    if (world_) world_->Close();
+  }
+
+  int Run() {
+    try {
+      Start();
+      while (!Ended()) Step();
+      End();
+    } catch (...) {
+      std::string message;
+      sum_.exit_code = ExitCodeFor(std::current_exception(), &message);
+      sum_.end_reason = "error";
+      Finish("failed", message);
+    }
+    return sum_.exit_code;
+  }
+
+ private:
+  // The scene folder, the database, SUMO, the stages; named egos checked before any step.
+  void Start() {
+    if (!o_.record.scene_folder.empty()) PrepareSceneFolder(o_.record.scene_folder);
+    db_ = std::make_unique<ResultsDb>(o_.run.output);
+    sum_.output = o_.run.output;
+    world_ = open_(o_.run);
+    dt_ = world_->StepLength();
+    db_->BeginRun(o_.run.command_line, world_->Version(),
+                  o_.observe.all_vehicles ? "*" : Join(o_.observe.egos), dt_);
+    db_->SetScenario(o_.run.expect, o_.run.expect_partner, o_.run.quiet_until_s,
+                     o_.run.category);
+    observe_ = std::make_unique<ObserveStage>(o_.observe, world_.get());
+    // SUMO moves vehicles by x += v_new * dt unless told to use the ballistic update: the
+    // estimator predicts the positions that update gives (Scene::euler_update_step_s).
+    const bool euler = world_->Option("step-method.ballistic") != "true";
+    scenes_ = std::make_unique<SceneStage>(o_.scenes, dt_, euler, world_.get(), world_.get());
+    estimate_ = std::make_unique<EstimateStage>(o_.params, o_.estimator);
+    act_ = std::make_unique<ActStage>(o_.act, world_.get(), dt_);
+    record_ = std::make_unique<RecordStage>(o_.record, db_.get());
+    script_ = std::make_unique<EventScript>(o_.run.events, world_.get());
+    observe_->CheckNamedEgos();
+    // libsumo does not stop at the configuration's end time by itself.
+    const double sumo_end = world_->EndTime();
+    end_option_ = o_.run.end_time_s >= 0.0 && (sumo_end < 0.0 || o_.run.end_time_s < sumo_end);
+    end_ = end_option_ ? o_.run.end_time_s : sumo_end;
+    tty_ = o_.run.progress && isatty(2);
+  }
+
+  // Whether the run ends before the next step; sets the summary's end reason.
+  bool Ended() {
+    if (g_signal) {
+      sum_.end_reason = "interrupted";
+    } else if (end_ >= 0.0 && world_->Time() >= end_ - 1e-9) {
+      sum_.end_reason = end_option_ ? "end-option" : "sumo-end";
+    } else if (world_->ExpectedObjects() <= 0) {
+      sum_.end_reason = "sumo-end";
+    } else if (observe_->AllNamedEgosDone() && sum_.steps > 0) {
+      sum_.end_reason = "egos-arrived";
+    }
+    return !sum_.end_reason.empty();
+  }
+
+  // One step: SUMO moves, then observe -> scenes -> estimate -> act -> record.
+  void Step() {
+    script_->ApplyDue(world_->Time(), dt_);
+    StepClock clock;
+    clock.t[0] = Clock::now();
+    world_->Step();
+    stepped_ = true;
+    clock.t[1] = Clock::now();
+    const Observation obs = observe_->Run();
+    t_ = obs.time_s;
+    script_->Left(obs.arrived);
+    clock.t[2] = Clock::now();
+    const SceneBatch batch = scenes_->Run(obs);
+    clock.t[3] = Clock::now();
+    const std::vector<Result> results = estimate_->Run(batch);
+    clock.t[4] = Clock::now();
+    const ActOutcome acted = act_->Run(obs, batch, results);
+    clock.t[5] = Clock::now();
+    record_->Run(obs, batch, acted);
+    record_->Commit(TimeRow(clock, acted));
+    clock.t[6] = Clock::now();
+    clock.Into(&sum_.times);
+    Account(obs, acted);
+    Progress(clock.t[6], batch.scenes.size());
+  }
+
+  StepTimeRow TimeRow(const StepClock& clock, const ActOutcome& acted) {
+    StepTimeRow row;
+    row.time_s = t_;
+    clock.Into(&row);
+    row.estimates = static_cast<int>(acted.steps.size());
+    for (const EgoStep& s : acted.steps) row.shortcut_estimates += s.shortcut ? 1 : 0;
+    if (Seconds(clock.t[5] - last_rss_) >= 2.0 || sum_.steps == 0) {
+      rss_mb_ = RssMb();
+      last_rss_ = clock.t[5];
+    }
+    row.rss_mb = rss_mb_;
+    return row;
+  }
+
+  // The step's counts into the summary.
+  void Account(const Observation& obs, const ActOutcome& acted) {
+    sum_.steps += 1;
+    sum_.sim_time_s = t_;
+    sum_.egos = observe_->EgosSeen();
+    sum_.invalid_objects = scenes_->invalid_objects();
+    sum_.ego_events += static_cast<long long>(obs.ego_events.size());
+    for (const CollisionEvent& c : obs.collisions) {
+      ++sum_.collisions;
+      if (!c.involves_ego) continue;
+      ++sum_.ego_collisions;
+      const std::string& partner = o_.run.expect_partner;
+      if (o_.run.expect == "collision" &&
+          (partner.empty() || c.sumo.collider == partner || c.sumo.victim == partner)) {
+        sum_.expectation_met = true;
+      }
+    }
+    for (const EgoStep& s : acted.steps) {
+      ++sum_.estimates;
+      sum_.shortcut_estimates += s.shortcut ? 1 : 0;
+      sum_.objects_out_of_reach += s.objects - s.objects_in_reach;
+      sum_.estimator_ms_sum += s.estimator_ms;
+      sum_.estimator_ms_max = std::max(sum_.estimator_ms_max, s.estimator_ms);
+    }
+    for (const WarningEvent& w : acted.warnings) sum_.warnings += w.change == WarningChange::kOpen;
+    sum_.actions += static_cast<long long>(acted.actions.size());
+  }
+
+  void Progress(Clock::time_point now, size_t egos) {
+    if (!tty_ || now - last_print_ < std::chrono::milliseconds(500)) return;
+    std::fprintf(
+        stderr, "\r  t = %.1f s  %.0f steps/s  egos %zu  warnings %lld  collisions %lld   ", t_,
+        sum_.steps / std::max(Seconds(now - wall0_), 1e-9), egos, sum_.warnings, sum_.collisions);
+    last_print_ = now;
+  }
+
+  // The run ended without an error (SUMO, --end, the egos, or a signal).
+  void End() {
+    if (tty_) std::fprintf(stderr, "\n");
+    if (o_.run.expect == "collision" && !sum_.expectation_met) sum_.expectation_met = false;
+    if (o_.run.expect == "no-collision") sum_.expectation_met = sum_.ego_collisions == 0;
+    for (const std::string& e : script_->Pending()) {
+      std::fprintf(stderr,
+                   "sumo-criticality: warning: event '%s' was never applied (its target never "
+                   "entered the network before the run ended)\n",
+                   e.c_str());
+    }
+    if (g_signal) {
+      sum_.exit_code = g_signal == SIGTERM ? kExitSigterm : kExitSigint;
+      Finish("interrupted", "");
+      return;
+    }
+    const std::string never = observe_->NeverDeparted(t_);
+    if (!never.empty()) throw EgoError(never);
+    sum_.exit_code = kExitDone;
+    Finish("completed", "");
+  }
+
+  // The summary's last fields, and the database's end (or no database at all when the run
+  // failed before its first step).
+  void Finish(const std::string& status, const std::string& error) {
+    if (tty_ && status == "failed") std::fprintf(stderr, "\n");
+    sum_.status = status;
+    sum_.error = error;
+    sum_.sim_time_s = t_;
+    sum_.wall_s = Seconds(Clock::now() - wall0_);
+    sum_.max_rss_mb = MaxRssMb();
+    sum_.cpu_s = CpuSeconds();
+    if (!db_) return;
+    if (!stepped_ && status != "completed") {
+      db_->Discard();
+      sum_.output.clear();
+      return;
+    }
+    try {
+      if (act_ && record_) {
+        for (const std::string& ego : act_->OpenEpisodes()) record_->CloseEpisode(ego, t_);
+      }
+      db_->EndRun(status, sum_.end_reason, error, SummaryJson(sum_));
+    } catch (const std::exception&) {
+      // the database itself failed (e.g. disk full): what was committed stays readable
+    }
+  }
+
+  const DriverOptions& o_;
+  RunSummary& sum_;
+  const OpenWorld& open_;
+  const Clock::time_point wall0_;
+  std::unique_ptr<ResultsDb> db_;
+  std::unique_ptr<SumoWorld> world_;
+  // The stages of a step, in the order data flows.
+  std::unique_ptr<ObserveStage> observe_;
+  std::unique_ptr<SceneStage> scenes_;
+  std::unique_ptr<EstimateStage> estimate_;
+  std::unique_ptr<ActStage> act_;
+  std::unique_ptr<RecordStage> record_;
+  std::unique_ptr<EventScript> script_;
+  double dt_{0.1}, t_{0.0}, end_{-1.0};
+  bool end_option_{false}, tty_{false};
+  bool stepped_{false};  ///< a step was made: from then on the database is kept
+  Clock::time_point last_print_{}, last_rss_{};
+  double rss_mb_{0.0};
+};
+
+}  // namespace
+
+int RunDriver(const DriverOptions& o, RunSummary* summary, const OpenWorld& open) {
+  // Without SUMO_HOME, SUMO may try slow web lookups for XML schemas (DESIGN.md).
+  if (!std::getenv("SUMO_HOME") && fs::exists("/usr/share/sumo"))
+    setenv("SUMO_HOME", "/usr/share/sumo", 0);
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  CoSimulation run(o, summary, open);
+  return run.Run();
+}
+
+}  // namespace criticality::plugin

@@ -1,0 +1,97 @@
+#pragma once
+// Scene extraction's geometry, independent of SUMO: a vehicle's lane corridor (the centre line
+// of its lane from behind it to beyond where it can reach in the horizon, continued into the
+// next lanes of its route, plus the widths of its lane and its neighbours) becomes the
+// estimator's LaneSet: each divider sampled at its closest, middle and farthest point within
+// the reach, in the vehicle's local frame. Neighbours on the same road are adjacent and
+// parallel, so their dividers are the own lane's edges shifted by their widths.
+#include <optional>
+#include <vector>
+
+#include "criticality/geometry.h"
+#include "criticality/params.h"
+#include "criticality/scene.h"
+#include "plugin/network/polyline.h"
+
+namespace criticality::plugin {
+
+struct NeighbourLane {
+  double width_m{3.2};
+  bool counter_traffic{false};
+};
+
+struct LaneCorridor {
+  std::vector<Point2> centre;  ///< the own lane's centre line, in driving direction (world)
+  double position_m{0.0};      ///< arc length along `centre` of the vehicle's centre of gravity
+  double width_m{3.2};
+  std::optional<NeighbourLane> left;
+  std::optional<NeighbourLane> right;
+};
+
+/** How far into a turn the samples go: the paper's parabola y(x) in the vehicle's frame cannot
+ *  follow a road that turns across the heading. Fitted through a sample beyond a junction's
+ *  90 degree turn it bent the other way first and swept through the cars waiting beside the
+ *  turn, so in the paper's frame the samples stop where the centre line has turned
+ *  kPaperFrameMaxTurnRad from the vehicle's heading, and the parabola curves on beyond. In the
+ *  estimator's turn frame (Params::turn_lane_frame: a lane fitted along its chord, continuing
+ *  straight beyond its last sample) a turn of more than kPaperFrameMaxTurnRad ahead is sampled
+ *  to its end instead (where the heading comes within kTurnEndToleranceRad of the heading at
+ *  the full reach), so that the lane leaves the turn along the road that follows. */
+struct LaneSampling {
+  bool turn_lane_frame{true};
+  /** The estimator's Params::turn_lane_frame_min_rad, so that the samples are checked in the
+   *  frame it will fit them in. */
+  double turn_lane_frame_min_rad{0.35};
+  /** Params::straight_before_turn: where the centre line runs straight (within
+   *  kStraightToleranceRad of its heading at the vehicle) for at least kMinStraightM and then
+   *  turns by at least kStraightThenTurnMinRad within the reach, the middle samples go where
+   *  the straight ends and every lane is marked Lane::straight_to_middle. */
+  bool straight_before_turn{true};
+};
+constexpr double kStraightToleranceRad = 0.05235987755982989;   // 3 degrees
+constexpr double kStraightThenTurnMinRad = 0.2617993877991494;  // 15 degrees
+/** A straight of 15 m or more: shorter straights lead into junction turns that the vehicle
+ *  may already be steering into, where the parabola through three points of the whole turn
+ *  follows it better (in the city run, 5 m straights fitted this way took turning cars wide). */
+constexpr double kMinStraightM = 15.0;
+/** ... and the turn keeps at least this much of the reach beyond the straight. */
+constexpr double kMinTurnM = 5.0;
+constexpr double kPaperFrameMaxTurnRad = 1.0471975511965976;  // 60 degrees
+constexpr double kTurnEndToleranceRad = 0.05235987755982989;  // 3 degrees
+/** In the turn frame, the samples still stop where the centre line has turned this far
+ *  (beyond it, e.g. in a U-turn, no chord makes the lane a function y(x)). */
+constexpr double kTurnFrameMaxTurnRad = 2.0943951023931957;  // 120 degrees
+/** ... but never closer than this (a vehicle standing across its lane keeps a usable reach). */
+constexpr double kMinSampledReachM = 5.0;
+
+/** The sampling for the estimator's parameters. */
+LaneSampling LaneSamplingFor(const Params& params);
+
+/** The reach the samples use: `reach_m`, or less where the centre line ahead of position turns
+ *  away from `yaw`, as LaneSampling says (at least kMinSampledReachM). */
+double SampledReach(const LaneCorridor& corridor, double reach_m, double yaw,
+                    bool turn_lane_frame = false);
+
+/** The yaw rate of a vehicle that follows the corridor's centre line at `speed`, as SUMO's
+ *  vehicles follow their lanes: speed x the heading change from window_m behind its position
+ *  to window_m ahead, over 2 window_m (0 on a straight, speed / radius in a turn; before the
+ *  corridor's start the first segment's heading counts). */
+double LaneYawRate(const LaneCorridor& corridor, double speed, double window_m);
+
+/** Where the corridor's centre line stops running straight: the distance ahead of position
+ *  at which it has turned more than kStraightToleranceRad from its heading at position, when
+ *  that is at least kMinStraightM and at most reach - kMinTurnM and the line has turned at
+ *  least kStraightThenTurnMinRad by the reach; otherwise 0 (no straight road before a turn). */
+double StraightBeforeTurn(const LaneCorridor& corridor, double reach_m);
+
+/** Samples the corridor at s = position, position + reach/2, position + reach (reach as
+ *  SampledReach shortens it; the middle where StraightBeforeTurn says the straight ends, as
+ *  LaneSampling::straight_before_turn asks) and returns the lanes in the vehicle's local frame
+ *  X_WV. Returns
+ *  an empty LaneSet (the estimator then uses a virtual lane) when the corridor has fewer than
+ *  2 points or its samples do not run forward along the frame the estimator fits them in
+ *  (e.g. the vehicle stands across its lane). */
+LaneSet SampleLaneSet(const LaneCorridor& corridor, double reach_m, const Pose2& X_WV,
+                      const LaneSampling& sampling = LaneSampling{});
+
+}  // namespace criticality::plugin

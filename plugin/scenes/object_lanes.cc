@@ -1,0 +1,82 @@
+#include "plugin/scenes/object_lanes.h"
+
+#include <cmath>
+
+#include "plugin/network/polyline.h"
+
+namespace criticality::plugin {
+namespace {
+
+// The corridor's centre line from the vehicle's lane on along its route, as far as it can get
+// within `reach` (at most 8 lanes on, and at least out of the junction it is in). Sets
+// *beyond_junction to the first normal lane after an internal one, and *route_end when the
+// route ends within the corridor.
+void FollowRoute(const VehicleOnLane& v, double reach, RoadNetwork* network, LaneCorridor* c,
+                 std::string* beyond_junction, std::optional<double>* route_end) {
+  std::string current = v.lane;
+  int route_index = v.route_index;
+  double length = PolylineLength(c->centre);
+  bool current_in_centre = true;  // the corridor's centre line ends with `current`
+  for (int hop = 0; hop < 8 && (length < c->position_m + reach ||
+                                (IsInternal(v.lane) && beyond_junction->empty()));
+       ++hop) {
+    const std::string next = NextLaneOnRoute(*network, current, v.route, &route_index);
+    if (next.empty()) {
+      if (current_in_centre && !v.route.empty() && network->Lane(current).edge == v.route.back())
+        *route_end = std::fmax(0.0, length - v.lane_position_m);
+      break;
+    }
+    if (beyond_junction->empty() && !IsInternal(next)) *beyond_junction = next;
+    current_in_centre = length < c->position_m + reach;
+    if (current_in_centre) {
+      for (const Point2& p : network->Lane(next).shape) {
+        const Point2& last = c->centre.back();
+        if (std::hypot(p.x - last.x, p.y - last.y) > 1e-3) c->centre.push_back(p);
+      }
+      length = PolylineLength(c->centre);
+    }
+    current = next;
+  }
+}
+
+// The neighbours as the vehicle sees them, from `reference` (its lane, or inside a junction
+// the lane it drives onto).
+void Neighbours(const VehicleOnLane& v, const std::string& reference, RoadNetwork* network,
+                CounterLanes* counter_lanes, LaneCorridor* c) {
+  const LaneInfo& ref = network->Lane(reference);
+  const int index = IsInternal(v.lane) ? ref.index : v.lane_index;
+  const int n = network->LaneCount(ref.edge);
+  const std::string left = ref.edge + "_" + std::to_string(index + 1);
+  const std::string right = ref.edge + "_" + std::to_string(index - 1);
+  if (index + 1 < n) {
+    if (Allows(*network, left, v.vehicle_class))
+      c->left = NeighbourLane{network->Lane(left).width_m, false};
+  } else if (const auto counter = counter_lanes->LeftOf(reference)) {
+    if (Allows(*network, *counter, v.vehicle_class))
+      c->left = NeighbourLane{network->Lane(*counter).width_m, true};
+  }
+  if (index > 0 && Allows(*network, right, v.vehicle_class))
+    c->right = NeighbourLane{network->Lane(right).width_m, false};
+}
+
+}  // namespace
+
+ObjectLanes LanesOf(const VehicleOnLane& v, const SceneConfig& config, double step_s,
+                    RoadNetwork* network, CounterLanes* counter_lanes) {
+  ObjectLanes out;
+  LaneCorridor c;
+  c.centre = network->Lane(v.lane).shape;
+  c.position_m = v.lane_position_m - 0.5 * v.length_m;
+  c.width_m = network->Lane(v.lane).width_m;
+  const double reach = ReachAhead(v.speed_mps, config);
+  std::string beyond_junction;  // the first normal lane after an internal one
+  FollowRoute(v, reach, network, &c, &beyond_junction, &out.route_end_m);
+  out.lane_yaw_rate_radps =
+      LaneYawRate(c, v.speed_mps, std::fmax(1.0, 0.5 * v.speed_mps * step_s));
+  const std::string reference = IsInternal(v.lane) ? beyond_junction : v.lane;
+  if (!reference.empty()) Neighbours(v, reference, network, counter_lanes, &c);
+  out.lanes = SampleLaneSet(c, reach, v.centre, config.lane_sampling);
+  return out;
+}
+
+}  // namespace criticality::plugin

@@ -1,0 +1,49 @@
+#pragma once
+// A vehicle's lanes from its own view: its lane corridor (its lane's centre line continued
+// along its route, its width and its neighbours as the vehicle sees them) read from the road
+// network and sampled into the estimator's LaneSet (lane_corridor.h).
+//  - A neighbour is a lane of the same edge that the vehicle's class may use (a sidewalk never
+//    is); left of the leftmost such lane, the adjacent lane of the opposite direction
+//    (plugin/network/counter_lanes.h), flagged as counter-traffic.
+//  - Inside a junction the neighbours are those of the lane the internal lane leads to.
+//  - When its route ends within the corridor, the distance its front still goes: SUMO removes a
+//    vehicle whose front reaches the end of its route (its arrival position, by default the
+//    last lane's end; an earlier arrivalPos in the route file is not read, so the vehicle is
+//    taken to go on to the end).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "criticality/scene.h"
+#include "plugin/network/counter_lanes.h"
+#include "plugin/network/road_network.h"
+#include "plugin/scenes/scene_config.h"
+
+namespace criticality::plugin {
+
+/** Where a vehicle is, as SUMO reports it, and how it is placed in the estimator's frame. */
+struct VehicleOnLane {
+  Pose2 centre;  ///< centre of gravity, math yaw
+  double speed_mps{0.0};
+  double length_m{4.5};
+  std::string lane;
+  double lane_position_m{0.0};  ///< of its front bumper
+  int lane_index{0};
+  std::vector<std::string> route;
+  int route_index{0};
+  std::string vehicle_class;
+};
+
+struct ObjectLanes {
+  LaneSet lanes;
+  std::optional<double> route_end_m;  ///< ObjectState::route_end_m
+  /** The yaw rate of following the corridor at its speed (LaneYawRate over half the distance
+   *  of one step, at least 1 m each way). */
+  double lane_yaw_rate_radps{0.0};
+};
+
+/** The vehicle's lanes, route end and lane yaw rate; `step_s` is the simulation's step. */
+ObjectLanes LanesOf(const VehicleOnLane& v, const SceneConfig& config, double step_s,
+                    RoadNetwork* network, CounterLanes* counter_lanes);
+
+}  // namespace criticality::plugin

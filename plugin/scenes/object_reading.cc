@@ -1,0 +1,120 @@
+#include "plugin/scenes/object_reading.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "plugin/scenes/footway.h"
+#include "plugin/scenes/stop_lines.h"
+#include "plugin/sumo/sumo_conventions.h"
+
+namespace criticality::plugin {
+namespace {
+
+// SUMO's speed, never negative (NaN passed on).
+double Speed(double v) { return std::isnan(v) ? v : std::max(0.0, v); }
+
+bool Finite(const ObjectState& s) {
+  return std::isfinite(s.x_m) && std::isfinite(s.y_m) && std::isfinite(s.yaw_rad) &&
+         std::isfinite(s.speed_mps);
+}
+
+}  // namespace
+
+ObjectReader::ObjectReader(const SceneConfig& config, double step_s, RoadNetwork* network,
+                           TrafficView* traffic)
+    : config_(config), step_s_(step_s), network_(network), traffic_(traffic),
+      counter_lanes_(network) {}
+
+std::vector<ObjectSnapshot> ObjectReader::Read(const std::vector<SumoObject>& objects,
+                                               double sumo_time_s) {
+  std::vector<ObjectSnapshot> out;
+  out.reserve(objects.size());
+  for (const SumoObject& o : objects) out.push_back(o.person ? Person(o) : Vehicle(o, sumo_time_s));
+  return out;
+}
+
+ObjectSnapshot ObjectReader::Person(const SumoObject& o) {
+  ObjectSnapshot s;
+  s.id = o.id;
+  s.person = true;
+  s.state.x_m = o.x_m;
+  s.state.y_m = o.y_m;
+  s.state.yaw_rad = NavigationDegToYaw(o.angle_deg);
+  s.state.speed_mps = Speed(o.speed_mps);
+  const Pedestrian footprint;  // the estimator's pedestrian (scene.h)
+  s.length_m = footprint.length_m;
+  s.width_m = footprint.width_m;
+  s.lane = o.lane;
+  if (s.lane.empty()) return s;
+  s.edge = network_->Lane(s.lane).edge;
+  // The next edge's lane 0: a sidewalk, walking area or crossing when it has one. A walk that
+  // ends on this edge goes on along it.
+  const WalkingPlace next = o.next_edge.empty()
+                                ? WalkingPlace::kSidewalk
+                                : WalkingPlaceOf(o.next_edge,
+                                                 PedestriansOnly(*network_, o.next_edge + "_0"));
+  s.stays_on_footway =
+      StaysOnFootway(WalkingPlaceOf(s.edge, PedestriansOnly(*network_, s.lane)), next);
+  return s;
+}
+
+ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
+  ObjectSnapshot s;
+  s.id = o.id;
+  s.length_m = o.length_m;
+  s.width_m = o.width_m;
+  if (o.height_m > 0.0) s.height_m = o.height_m;
+  const Pose2 c = FrontBumperToCentre(o.x_m, o.y_m, o.angle_deg, o.length_m);
+  s.state.x_m = c.x;
+  s.state.y_m = c.y;
+  s.state.yaw_rad = c.yaw;
+  s.state.speed_mps = Speed(o.speed_mps);
+  s.state.accel_mps2 = o.accel_mps2;
+  s.normal_decel_mps2 = o.decel_mps2;
+  // Yaw rate from the heading change since the previous step; 0 when the vehicle was not read
+  // at the previous step. With long steps it is replaced below by its lane's.
+  auto it = last_yaw_.find(o.id);
+  if (it != last_yaw_.end() && sumo_time_s > it->second.first &&
+      sumo_time_s - it->second.first < 1.5 * step_s_) {
+    s.state.yaw_rate_radps = WrapAngle(c.yaw - it->second.second) / (sumo_time_s - it->second.first);
+  }
+  last_yaw_[o.id] = {sumo_time_s, c.yaw};
+  s.lane = o.lane;
+  if (s.lane.empty()) return s;
+  s.edge = network_->Lane(s.lane).edge;
+  s.leader = LeaderOf(o.id, s.state.speed_mps);  // expected_accel_mps2: ExpectCarFollowing
+  if (!Finite(s.state)) return s;
+  VehicleOnLane v;
+  v.centre = c;
+  v.speed_mps = s.state.speed_mps;
+  v.length_m = o.length_m;
+  v.lane = o.lane;
+  v.lane_position_m = o.lane_position_m;
+  v.lane_index = o.lane_index;
+  v.route = o.route;
+  v.route_index = o.route_index;
+  v.vehicle_class = o.vehicle_class;
+  const ObjectLanes lanes = LanesOf(v, config_, step_s_, network_, &counter_lanes_);
+  s.lanes = lanes.lanes;
+  s.state.route_end_m = lanes.route_end_m;
+  if (step_s_ > kLongStepS) s.state.yaw_rate_radps = lanes.lane_yaw_rate_radps;
+  s.stop_line = StopLineOf(v, o.id, config_, network_, traffic_);
+  return s;
+}
+
+std::optional<Leader> ObjectReader::LeaderOf(const std::string& id, double speed) {
+  if (!(speed > 0.1)) return std::nullopt;
+  const std::optional<LeaderReport> ahead = traffic_->Leader(id, LeaderLookAhead(speed));
+  if (!ahead) return std::nullopt;
+  Leader leader;
+  leader.id = ahead->id;
+  leader.gap_m = ahead->gap_m;
+  leader.speed_mps = ahead->speed_mps;
+  leader.accel_mps2 = ahead->accel_mps2;
+  if (!std::isfinite(leader.gap_m) || !std::isfinite(leader.speed_mps) ||
+      !std::isfinite(leader.accel_mps2))
+    return std::nullopt;
+  return leader;
+}
+
+}  // namespace criticality::plugin

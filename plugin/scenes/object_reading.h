@@ -1,0 +1,49 @@
+#pragma once
+// Each object SUMO reported in a step becomes an ObjectSnapshot: its centre pose and math yaw
+// (plugin/sumo/sumo_conventions.h), its yaw rate (SUMO has no getter: the heading change since
+// the previous step, or with steps longer than kLongStepS the yaw rate of following its lane),
+// and for a vehicle on a lane its lanes from its own view (object_lanes.h), its stop line
+// (stop_lines.h) and its leader (car_following.h: three SUMO questions per moving vehicle); for a
+// walking person whether it keeps to the footway (footway.h). What each driver is then expected
+// to do is set once the whole step is read (expected_accel.h). SUMO's values are passed on as
+// they came, NaN included: scene building leaves out what the estimator cannot use.
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "plugin/network/counter_lanes.h"
+#include "plugin/network/road_network.h"
+#include "plugin/network/traffic_view.h"
+#include "plugin/scenes/object_snapshot.h"
+#include "plugin/scenes/scene_config.h"
+#include "plugin/sumo/sumo_reports.h"
+
+namespace criticality::plugin {
+
+class ObjectReader {
+ public:
+  /** @param step_s the simulation's step length. */
+  ObjectReader(const SceneConfig& config, double step_s, RoadNetwork* network,
+               TrafficView* traffic);
+  /** The snapshots of `objects` (same order), read at SUMO time `sumo_time_s`. */
+  std::vector<ObjectSnapshot> Read(const std::vector<SumoObject>& objects, double sumo_time_s);
+  /** A vehicle left the simulation: its heading is no longer remembered. */
+  void Forget(const std::string& id) { last_yaw_.erase(id); }
+
+ private:
+  ObjectSnapshot Vehicle(const SumoObject& o, double sumo_time_s);
+  ObjectSnapshot Person(const SumoObject& o);
+  /** The vehicle ahead that its driver is expected to follow; nullopt when it stands still
+   *  itself, nothing is within LeaderLookAhead, or SUMO's values are not finite. */
+  std::optional<Leader> LeaderOf(const std::string& id, double speed);
+
+  SceneConfig config_;
+  double step_s_;
+  RoadNetwork* network_;
+  TrafficView* traffic_;
+  CounterLanes counter_lanes_;
+  std::unordered_map<std::string, std::pair<double, double>> last_yaw_;  ///< id -> (time, yaw)
+};
+
+}  // namespace criticality::plugin

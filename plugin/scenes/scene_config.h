@@ -1,0 +1,34 @@
+#pragma once
+// What the scenes stage needs to know: the range of a scene, how far ahead each object's lanes
+// and stop lines reach, and how its lanes are sampled.
+#include <cmath>
+
+#include "plugin/scenes/lane_corridor.h"
+
+namespace criticality::plugin {
+
+struct SceneConfig {
+  /** --range: objects whose centre lies within this distance of the ego's are in its scene. */
+  double range_m{80.0};
+  /** The estimator's horizon and largest acceleration (Params::horizon_s,
+   *  vehicle_accel_max_mps2): an object's lanes and stop line reach v T + a T^2 / 2 ahead. */
+  double horizon_s{2.0};
+  double max_accel_mps2{9.7};
+  /** How far lanes are sampled into a turn (LaneSamplingFor the estimator's parameters). */
+  LaneSampling lane_sampling{};
+};
+
+/** How far a vehicle can get within the horizon, at least 10 m: v T + a_max T^2 / 2 (its lane
+ *  corridor's length, and how far ahead a stop line counts). */
+inline double ReachAhead(double speed_mps, const SceneConfig& config) {
+  return std::fmax(10.0, speed_mps * config.horizon_s +
+                             0.5 * config.max_accel_mps2 * config.horizon_s * config.horizon_s);
+}
+
+/** Steps longer than this (SUMO's default is 1 s) make the heading change since the previous
+ *  step a stale yaw rate: a car that finished a junction turn within the step kept "turning" at
+ *  its mean rate, into the oncoming lane. Such steps take the yaw rate of following the lane
+ *  instead, as SUMO's vehicles do. */
+inline constexpr double kLongStepS = 0.25;
+
+}  // namespace criticality::plugin

@@ -1,0 +1,51 @@
+#pragma once
+// Stage 2 of a step: the step's objects as the estimator sees them (object_reading.h: lanes from
+// each object's view, stop lines, what each driver is expected to do, footway) and one Scene per
+// ego (scene_building.h). Objects with invalid values are left out, counted, and reported once
+// per run on standard error. Reads the network and asks SUMO about leaders and signals only
+// through RoadNetwork and TrafficView.
+#include <string>
+#include <vector>
+
+#include "criticality/scene.h"
+#include "plugin/network/road_network.h"
+#include "plugin/network/traffic_view.h"
+#include "plugin/observe/observation.h"
+#include "plugin/scenes/object_reading.h"
+#include "plugin/scenes/object_snapshot.h"
+#include "plugin/scenes/scene_building.h"
+#include "plugin/scenes/scene_config.h"
+
+namespace criticality::plugin {
+
+struct SceneBatch {
+  /** Every object of the step (same order as the observation's objects). */
+  std::vector<ObjectSnapshot> objects;
+  std::vector<Scene> scenes;
+  /** scenes[k]'s ego: an index into objects. */
+  std::vector<int> egos;
+  const ObjectSnapshot& EgoOf(size_t k) const { return objects[egos[k]]; }
+};
+
+class SceneStage {
+ public:
+  /** @param step_s the simulation's step length.
+   *  @param euler_update SUMO moves vehicles by its Euler update (its default; not under
+   *  --step-method.ballistic): every scene says so (Scene::euler_update_step_s = step_s). */
+  SceneStage(const SceneConfig& config, double step_s, bool euler_update, RoadNetwork* network,
+             TrafficView* traffic);
+  SceneBatch Run(const Observation& obs);
+  /** Object reads left out of scenes so far (an object is counted once per step). */
+  long long invalid_objects() const { return invalid_objects_; }
+
+ private:
+  void Report(const Observation& obs, const std::vector<LeftOutObject>& left_out);
+
+  SceneConfig config_;
+  double euler_update_step_s_;
+  ObjectReader reader_;
+  long long invalid_objects_{0};
+  bool reported_{false};
+};
+
+}  // namespace criticality::plugin

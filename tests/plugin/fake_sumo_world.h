@@ -1,0 +1,260 @@
+#pragma once
+// A SUMO world in memory for the plugin's stage tests: a small network (straight lanes built
+// edge by edge, links between them), vehicles and persons placed by the test, what SUMO would
+// report after each step (queued by the test), and a log of every command the driver sent.
+// Step() moves every vehicle along its heading at its speed (a commanded speed replaces it),
+// the way SUMO's Euler update does: x += v_new dt.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "plugin/sumo/sumo_world.h"
+
+namespace criticality::plugin::testing {
+
+class FakeSumoWorld final : public SumoWorld {
+ public:
+  explicit FakeSumoWorld(double step_s = 0.1) : dt_(step_s) {}
+
+  // ---- Building the network -------------------------------------------------------------
+  /** An edge of `lanes` parallel straight lanes from (x0, y0) to (x1, y1), lane 0 rightmost,
+   *  each `width` wide; `allowed` classes for every lane (empty: all). */
+  void AddEdge(const std::string& edge, double x0, double y0, double x1, double y1, int lanes,
+               double width = 3.2, std::vector<std::string> allowed = {}) {
+    const double len = std::hypot(x1 - x0, y1 - y0);
+    const double nx = -(y1 - y0) / len, ny = (x1 - x0) / len;  // left normal
+    for (int k = 0; k < lanes; ++k) {
+      // Lane k's centre: (k - (lanes - 1) / 2) widths left of the edge's axis.
+      const double off = (k - 0.5 * (lanes - 1)) * width;
+      LaneInfo l;
+      l.shape = {Point2{x0 + nx * off, y0 + ny * off}, Point2{x1 + nx * off, y1 + ny * off}};
+      l.width_m = width;
+      l.length_m = len;
+      l.edge = edge;
+      l.index = k;
+      const std::string id = edge + "_" + std::to_string(k);
+      lanes_[id] = l;
+      allowed_[id] = allowed;
+    }
+    lane_count_[edge] = lanes;
+    edges_.push_back(edge);
+  }
+  void AddLink(const std::string& from_lane, const std::string& to_lane, std::string state = "M",
+               bool has_foe = false) {
+    links_[from_lane].push_back(LaneLink{to_lane, "", state, has_foe});
+  }
+  void SetAllowed(const std::string& lane, std::vector<std::string> classes) {
+    allowed_[lane] = std::move(classes);
+  }
+
+  // ---- Objects ----------------------------------------------------------------------------
+  /** A vehicle whose front bumper is at (x, y), heading along `angle_deg` (navigation). */
+  SumoObject& AddVehicle(const std::string& id, double x, double y, double angle_deg, double speed,
+                         const std::string& lane = "", double lane_pos = 0.0,
+                         std::vector<std::string> route = {}) {
+    SumoObject o;
+    o.id = id;
+    o.x_m = x;
+    o.y_m = y;
+    o.angle_deg = angle_deg;
+    o.speed_mps = speed;
+    o.length_m = 5.0;
+    o.width_m = 1.8;
+    o.decel_mps2 = 4.5;
+    o.vehicle_class = "passenger";
+    o.lane = lane;
+    o.lane_position_m = lane_pos;
+    o.lane_index = lane.empty() ? 0 : lanes_.at(lane).index;
+    o.route = std::move(route);
+    objects_.push_back(o);
+    known_[id] = Known::kVehicle;
+    return objects_.back();
+  }
+  SumoObject& AddPerson(const std::string& id, double x, double y, double angle_deg, double speed,
+                        const std::string& lane = "", const std::string& next_edge = "") {
+    SumoObject o;
+    o.id = id;
+    o.person = true;
+    o.x_m = x;
+    o.y_m = y;
+    o.angle_deg = angle_deg;
+    o.speed_mps = speed;
+    o.lane = lane;
+    o.next_edge = next_edge;
+    objects_.push_back(o);
+    known_[id] = Known::kPerson;
+    return objects_.back();
+  }
+  SumoObject* Find(const std::string& id) {
+    for (SumoObject& o : objects_) {
+      if (o.id == id) return &o;
+    }
+    return nullptr;
+  }
+  void Remove(const std::string& id) {
+    objects_.erase(std::remove_if(objects_.begin(), objects_.end(),
+                                  [&](const SumoObject& o) { return o.id == id; }),
+                   objects_.end());
+  }
+  /** What SUMO reports after the next Step() (then cleared). */
+  StepReport next_report;
+  std::map<std::string, LeaderReport> leaders;
+  std::map<std::string, SignalReport> signals;
+  std::map<std::string, std::string> options;
+  /** ReadControl's answer per vehicle; unset: the vehicle's speed as SUMO's own choice. */
+  std::map<std::string, VehicleControl> control;
+  LaneChanging lane_changing;
+  double end_time_s{-1.0};
+  /** Every command, one line each: "speed ego 12.30", "release ego", "lane ego 1 2.0", ... */
+  std::vector<std::string> commands;
+  std::vector<std::string> forgotten;
+  /** Publish calls: ego -> (last p, warning). */
+  std::map<std::string, std::pair<double, bool>> published;
+
+  // ---- SumoWorld --------------------------------------------------------------------------
+  std::string Version() override { return "fake SUMO"; }
+  void Step() override {
+    report_ = next_report;
+    next_report = StepReport{};
+    for (SumoObject& o : objects_) {
+      auto it = commanded_.find(o.id);
+      if (it != commanded_.end()) o.speed_mps = it->second;
+      const double yaw = (90.0 - o.angle_deg) * M_PI / 180.0;
+      o.x_m += o.speed_mps * dt_ * std::cos(yaw);
+      o.y_m += o.speed_mps * dt_ * std::sin(yaw);
+      if (!o.lane.empty()) o.lane_position_m += o.speed_mps * dt_;
+    }
+    now_ += dt_;
+  }
+  double Time() override { return now_; }
+  double StepLength() override { return dt_; }
+  double EndTime() override { return end_time_s; }
+  std::string Option(const std::string& name) override {
+    auto it = options.find(name);
+    return it == options.end() ? "" : it->second;
+  }
+  int ExpectedObjects() override { return static_cast<int>(objects_.size()); }
+  StepReport Report() override { return report_; }
+  std::vector<std::string> VehicleIds() override {
+    std::vector<std::string> ids;
+    for (const SumoObject& o : objects_) {
+      if (!o.person) ids.push_back(o.id);
+    }
+    return ids;
+  }
+  Known Lookup(const std::string& id) override {
+    auto it = known_.find(id);
+    return it == known_.end() ? Known::kUnknown : it->second;
+  }
+  SumoSurroundings Observe(const std::vector<std::string>& egos, const ReadScope& scope) override {
+    SumoSurroundings out;
+    out.whole_network = scope.whole_network;
+    out.objects = objects_;
+    for (const std::string& ego : egos) {
+      const int self = IndexOf(ego, out.objects);
+      if (self < 0) continue;  // it left
+      SumoSurroundings::Ego e;
+      e.self = self;
+      if (!scope.whole_network) {
+        for (int k = 0; k < static_cast<int>(out.objects.size()); ++k) {
+          const SumoObject& o = out.objects[k];
+          // As SUMO's context: what it cannot place (NaN) is delivered too.
+          if (k != self && !(std::hypot(o.x_m - out.objects[self].x_m,
+                                        o.y_m - out.objects[self].y_m) > scope.context_range_m))
+            e.nearby.push_back(k);
+        }
+      }
+      out.egos.push_back(e);
+    }
+    return out;
+  }
+  void Forget(const std::string& id) override { forgotten.push_back(id); }
+  void Publish(const std::string& ego, double p, bool warning) override {
+    published[ego] = {p, warning};
+  }
+  std::optional<LeaderReport> Leader(const std::string& vehicle, double) override {
+    auto it = leaders.find(vehicle);
+    if (it == leaders.end()) return std::nullopt;
+    return it->second;
+  }
+  std::optional<SignalReport> NextSignal(const std::string& vehicle) override {
+    auto it = signals.find(vehicle);
+    if (it == signals.end()) return std::nullopt;
+    return it->second;
+  }
+  const LaneInfo& Lane(const std::string& id) override { return lanes_.at(id); }
+  const std::vector<LaneLink>& Links(const std::string& lane) override { return links_[lane]; }
+  std::vector<LaneLink> LinksNow(const std::string& lane) override { return links_[lane]; }
+  const std::vector<std::string>& AllowedClasses(const std::string& lane) override {
+    return allowed_[lane];
+  }
+  int LaneCount(const std::string& edge) override { return lane_count_.at(edge); }
+  std::vector<std::string> Edges() override { return edges_; }
+  VehicleControl ReadControl(const std::string& v) override {
+    auto it = control.find(v);
+    if (it != control.end()) return it->second;
+    VehicleControl c;
+    const SumoObject* o = Find(v);
+    c.own_speed_mps = o ? o->speed_mps : 0.0;
+    c.lane = o ? o->lane : "";
+    c.lane_index = o ? o->lane_index : 0;
+    c.lanes = (o && !o->lane.empty()) ? lane_count_.at(lanes_.at(o->lane).edge) : 1;
+    return c;
+  }
+  void CommandSpeed(const std::string& ego, double speed) override {
+    commanded_[ego] = speed;
+    commands.push_back("speed " + ego + " " + Fixed(speed));
+  }
+  void ReleaseSpeed(const std::string& ego) override {
+    commanded_.erase(ego);
+    commands.push_back("release " + ego);
+  }
+  void ChangeLane(const std::string& ego, int lane_index, double hold_s) override {
+    commands.push_back("lane " + ego + " " + std::to_string(lane_index) + " " + Fixed(hold_s));
+  }
+  void ChangeSublane(const std::string& ego, double lateral_m) override {
+    commands.push_back("sublane " + ego + " " + Fixed(lateral_m));
+  }
+  LaneChanging LaneChangingModel() override { return lane_changing; }
+  bool Apply(const ScenarioEvent& e) override {
+    if (!Find(e.target)) return false;
+    commands.push_back("event " + e.text);
+    return true;
+  }
+  void Close() override { closed = true; }
+  bool closed{false};
+
+  static std::string Fixed(double v) {
+    std::ostringstream o;
+    o.setf(std::ios::fixed);
+    o.precision(2);
+    o << v;
+    return o.str();
+  }
+
+ private:
+  static int IndexOf(const std::string& id, const std::vector<SumoObject>& objects) {
+    for (int k = 0; k < static_cast<int>(objects.size()); ++k) {
+      if (objects[k].id == id && !objects[k].person) return k;
+    }
+    return -1;
+  }
+
+  double dt_;
+  double now_{0.0};
+  std::map<std::string, LaneInfo> lanes_;
+  std::map<std::string, std::vector<LaneLink>> links_;
+  std::map<std::string, std::vector<std::string>> allowed_;
+  std::map<std::string, int> lane_count_;
+  std::vector<std::string> edges_;
+  std::vector<SumoObject> objects_;
+  std::map<std::string, Known> known_;
+  std::map<std::string, double> commanded_;
+  StepReport report_;
+};
+
+}  // namespace criticality::plugin::testing

@@ -1,0 +1,113 @@
+// The whole co-simulation loop on a fake SUMO world, no SUMO: every stage runs each step and
+// the results database holds what they produced; errors end the run with their exit code and
+// no half-made file.
+#include "plugin/run/co_simulation.h"
+
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "../fake_sumo_world.h"
+#include "plugin/run/exit_codes.h"
+
+namespace criticality::plugin {
+namespace {
+
+using testing::FakeSumoWorld;
+
+std::string Query(const std::string& path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
+  sqlite3_stmt* s = nullptr;
+  std::string out = "<no row>";
+  if (sqlite3_prepare_v2(db, sql.c_str(), -1, &s, nullptr) == SQLITE_OK &&
+      sqlite3_step(s) == SQLITE_ROW) {
+    const unsigned char* t = sqlite3_column_text(s, 0);
+    out = t ? reinterpret_cast<const char*>(t) : "NULL";
+  }
+  sqlite3_finalize(s);
+  sqlite3_close(db);
+  return out;
+}
+
+std::string Output(const char* name) {
+  const std::string path = ::testing::TempDir() + name;
+  for (const char* suffix : {"", "-wal", "-shm"}) std::remove((path + suffix).c_str());
+  return path;
+}
+
+// An ego at 15 m/s on a straight two-lane road, a car standing 60 m ahead in its lane.
+std::unique_ptr<SumoWorld> Road(const RunConfig&) {
+  auto w = std::make_unique<FakeSumoWorld>(0.1);
+  w->AddEdge("E", 0, 0, 1000, 0, 2);
+  w->AddVehicle("ego", 100, -1.6, 90, 15, "E_0", 100, {"E"});
+  w->AddVehicle("standing", 165, -1.6, 90, 0, "E_0", 165, {"E"});
+  w->next_report.departed = {"ego", "standing"};
+  return w;
+}
+
+DriverOptions Options(const std::string& output) {
+  DriverOptions o;
+  o.run.output = output;
+  o.run.end_time_s = 2.0;
+  o.run.progress = false;
+  o.observe.egos = {"ego"};
+  o.params.profiles = 3;  // a small hypothesis set: the loop, not the estimator, is tested
+  o.estimator.threads = 1;
+  o.estimator.reach_shortcut = true;
+  o.act.act = Act::kWarn;
+  return o;
+}
+
+TEST(CoSimulation, EveryStepGoesThroughEveryStageIntoTheDatabase) {
+  const std::string db = Output("loop.sqlite");
+  RunSummary summary;
+  const int code = RunDriver(Options(db), &summary, Road);
+  ASSERT_EQ(code, kExitDone) << summary.error;
+  EXPECT_EQ(summary.status, "completed");
+  EXPECT_EQ(summary.end_reason, "end-option");
+  EXPECT_EQ(summary.steps, 20);  // 0.1 s steps up to 2.0 s
+  EXPECT_EQ(summary.estimates, 20);
+  EXPECT_EQ(summary.egos, 1);
+  EXPECT_EQ(Query(db, "select status || ' ' || end_reason from runs"), "completed end-option");
+  EXPECT_EQ(Query(db, "select count(*) from steps where ego = 'ego' and objects = 1"), "20");
+  EXPECT_EQ(Query(db, "select count(*) from step_times"), "20");
+  EXPECT_EQ(Query(db, "select event from ego_events"), "depart");
+  // The stamps are SUMO's: the first step's state is stamped 0.
+  EXPECT_EQ(Query(db, "select min(time_s) from steps"), "0.0");
+  // The criticality rises as the ego closes in on the standing car (15 m/s, 60 m).
+  EXPECT_LT(std::stod(Query(db, "select p_collision from steps order by time_s limit 1")),
+            std::stod(Query(db, "select p_collision from steps order by time_s desc limit 1")));
+}
+
+TEST(CoSimulation, ASumoThatCannotStartIsExitThreeAndLeavesNoFile) {
+  const std::string db = Output("nosumo.sqlite");
+  RunSummary summary;
+  const int code = RunDriver(Options(db), &summary, [](const RunConfig&) -> std::unique_ptr<SumoWorld> {
+    throw SumoError("loading SUMO failed: no such network");
+  });
+  EXPECT_EQ(code, kExitSumo);
+  EXPECT_EQ(summary.status, "failed");
+  EXPECT_NE(summary.error.find("no such network"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(db));
+  EXPECT_TRUE(summary.output.empty());
+}
+
+TEST(CoSimulation, AScriptedEventForAVehicleNobodyDefinesIsBadInputAtItsTime) {
+  const std::string db = Output("badevent.sqlite");
+  DriverOptions o = Options(db);
+  o.run.events.push_back(ParseEvent("0.5 ghost speed 3"));
+  RunSummary summary;
+  const int code = RunDriver(o, &summary, Road);
+  EXPECT_EQ(code, kExitBadInput);
+  EXPECT_NE(summary.error.find("ghost"), std::string::npos);
+  // The steps before the event's time are kept.
+  EXPECT_EQ(Query(db, "select status from runs"), "failed");
+  EXPECT_EQ(Query(db, "select count(*) from steps"), "5");
+}
+
+}  // namespace
+}  // namespace criticality::plugin

@@ -1,0 +1,39 @@
+// Where a walking person is in SUMO's pedestrian network (plugin/footway.h).
+#include "plugin/scenes/footway.h"
+
+#include <gtest/gtest.h>
+
+namespace criticality::plugin {
+namespace {
+
+TEST(Footway, PlacesFromSumoEdgeIds) {
+  EXPECT_EQ(WalkingPlaceOf("E3D3", true), WalkingPlace::kSidewalk);
+  EXPECT_EQ(WalkingPlaceOf(":D3_w1", true), WalkingPlace::kWalkingArea);
+  EXPECT_EQ(WalkingPlaceOf(":D3_c0", true), WalkingPlace::kCrossing);
+  // Junction IDs with underscores and letters; only the last part counts.
+  EXPECT_EQ(WalkingPlaceOf(":cluster_c1_w2_c12", true), WalkingPlace::kCrossing);
+  EXPECT_EQ(WalkingPlaceOf(":cluster_c1_w2", true), WalkingPlace::kWalkingArea);
+  // A vehicles' internal lane, a normal edge named like a crossing, a letter without digits.
+  EXPECT_EQ(WalkingPlaceOf(":D3_12", true), WalkingPlace::kSidewalk);
+  EXPECT_EQ(WalkingPlaceOf("road_c1", true), WalkingPlace::kSidewalk);
+  EXPECT_EQ(WalkingPlaceOf(":D3_c", true), WalkingPlace::kSidewalk);
+  EXPECT_EQ(WalkingPlaceOf(":D3_c1x", true), WalkingPlace::kSidewalk);
+  // Lanes that vehicles may use are road, whatever their name.
+  EXPECT_EQ(WalkingPlaceOf("E3D3", false), WalkingPlace::kRoad);
+  EXPECT_EQ(WalkingPlaceOf(":D3_c0", false), WalkingPlace::kRoad);
+  EXPECT_EQ(WalkingPlaceOf("", false), WalkingPlace::kRoad);
+}
+
+TEST(Footway, StaysOnFootwayOnlyWhenNeitherHereNorNextIsRoadOrCrossing) {
+  using P = WalkingPlace;
+  EXPECT_TRUE(StaysOnFootway(P::kSidewalk, P::kWalkingArea));
+  EXPECT_TRUE(StaysOnFootway(P::kWalkingArea, P::kSidewalk));
+  EXPECT_TRUE(StaysOnFootway(P::kSidewalk, P::kSidewalk));
+  EXPECT_FALSE(StaysOnFootway(P::kWalkingArea, P::kCrossing));  // about to cross
+  EXPECT_FALSE(StaysOnFootway(P::kSidewalk, P::kRoad));
+  EXPECT_FALSE(StaysOnFootway(P::kCrossing, P::kWalkingArea));  // crossing now
+  EXPECT_FALSE(StaysOnFootway(P::kRoad, P::kSidewalk));
+}
+
+}  // namespace
+}  // namespace criticality::plugin

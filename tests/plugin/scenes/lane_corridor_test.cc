@@ -1,0 +1,230 @@
+// Lane corridors (SUMO lane centre lines) -> the estimator's LaneSet in the vehicle frame.
+#include "plugin/scenes/lane_corridor.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/geometry.h"
+#include "criticality/estimator.h"
+#include "src/street_data.h"
+
+namespace criticality::plugin {
+namespace {
+
+TEST(LaneCorridor, NorthboundLaneBecomesStraightLanesInTheVehicleFrame) {
+  // A north-going lane (vertical in the world) with a neighbour on each side: in the vehicle's
+  // frame the dividers must be horizontal lines at +-1.6 and +-1.6 + 3.2.
+  LaneCorridor c;
+  c.centre = {{50, 0}, {50, 500}};
+  c.position_m = 100.0;
+  c.width_m = 3.2;
+  c.left = NeighbourLane{3.2, true};
+  c.right = NeighbourLane{3.2, false};
+  const Pose2 X_WV{50.0, 100.0, kPi / 2};
+  const LaneSet set = SampleLaneSet(c, 60.0, X_WV);
+  ASSERT_TRUE(set.own && set.left && set.right);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(set.own->left.points[i].x, 30.0 * i, 1e-9);
+    EXPECT_NEAR(set.own->left.points[i].y, 1.6, 1e-9);
+    EXPECT_NEAR(set.own->right.points[i].y, -1.6, 1e-9);
+    EXPECT_NEAR(set.left->left.points[i].y, 4.8, 1e-9);
+    EXPECT_NEAR(set.right->right.points[i].y, -4.8, 1e-9);
+  }
+  EXPECT_TRUE(set.left->counter_traffic);
+  EXPECT_FALSE(set.right->counter_traffic);
+}
+
+TEST(LaneCorridor, ContinuesAroundABendIntoTheNextLane) {
+  LaneCorridor c;
+  c.centre = {{0, 0}, {20, 0}, {120, 100}};  // a 45 deg left bend 10 m ahead of the vehicle
+  c.position_m = 10.0;
+  c.width_m = 3.0;
+  const LaneSet set = SampleLaneSet(c, 20.0, Pose2{10.0, 0.0, 0.0});
+  ASSERT_TRUE(set.own);
+  // The farthest sample lies 10 m past the bend: 7 m to the vehicle's left.
+  EXPECT_NEAR(set.own->left.points[2].y, 10.0 / std::sqrt(2.0) + 1.5 / std::sqrt(2.0), 1e-9);
+  // A right angle cannot be a lane y(x) in the vehicle's frame: the samples stop before it
+  // (SampledReach), and the lane is the straight part up to the corner.
+  c.centre = {{0, 0}, {20, 0}, {20, 100}};
+  const LaneSet corner =
+      SampleLaneSet(c, 20.0, Pose2{10.0, 0.0, 0.0}, LaneSampling{false, 0.35});
+  ASSERT_TRUE(corner.own);
+  EXPECT_LE(corner.own->left.points[2].x, 10.0);
+  EXPECT_GE(corner.own->left.points[2].x, 9.0);
+  for (const Point2& p : corner.own->left.points) EXPECT_NEAR(p.y, 1.5, 1e-9);
+}
+
+TEST(LaneCorridor, SamplesStopWhereAJunctionTurnLeavesTheVehiclesHeading) {
+  // A right turn of radius 8 m starting at the vehicle (heading +x), then straight on in -y:
+  // reach 33 m would put the farthest sample 25 m past the turn, where a parabola y(x) through
+  // it first bends left. The samples stop where the turn passes 60 degrees.
+  LaneCorridor c;
+  const double r = 8.0;
+  for (int i = 0; i <= 90; i += 5) {
+    const double a = i * kPi / 180.0;
+    c.centre.push_back({r * std::sin(a), -r * (1.0 - std::cos(a))});
+  }
+  c.centre.push_back({r, -r - 40.0});
+  c.position_m = 0.0;
+  c.width_m = 3.2;
+  const double arc60 = r * kPi / 3.0;  // 8.4 m of arc turn the heading by 60 degrees
+  const double reach = SampledReach(c, 33.0, 0.0);
+  EXPECT_LE(reach, arc60 + 0.5);
+  EXPECT_GE(reach, arc60 - 1.0);
+  const LaneSet set =
+      SampleLaneSet(c, 33.0, Pose2{0.0, 0.0, 0.0}, LaneSampling{false, 0.35});
+  ASSERT_TRUE(set.own);
+  // Every sample curves right, never left of the start (the fit through a sample past the
+  // turn did).
+  for (const Point2& p : set.own->left.points) EXPECT_LE(p.y, 1.6 + 1e-9);
+  EXPECT_LT(set.own->left.points[2].y, set.own->left.points[1].y);
+  // A straight lane keeps the whole reach.
+  LaneCorridor straight;
+  straight.centre = {{0, 0}, {100, 0}};
+  EXPECT_EQ(SampledReach(straight, 33.0, 0.0), 33.0);
+  EXPECT_EQ(SampledReach(straight, 33.0, 0.0, /*turn_lane_frame=*/true), 33.0);
+  // In the estimator's turn frame the samples go to the end of the turn (90 degrees of arc,
+  // 12.6 m) and no further: the lane then leaves the turn straight along its exit.
+  const double arc90 = r * kPi / 2;
+  const double turn_reach = SampledReach(c, 33.0, 0.0, /*turn_lane_frame=*/true);
+  EXPECT_GE(turn_reach, arc90 - 1.0);
+  EXPECT_LE(turn_reach, arc90 + 1.0);
+  const LaneSet turn = SampleLaneSet(c, 33.0, Pose2{0.0, 0.0, 0.0});
+  ASSERT_TRUE(turn.own);
+  EXPECT_NEAR(turn.own->right.points[2].x, r - 1.6, 0.3);  // the inner divider at the exit...
+  EXPECT_LT(turn.own->right.points[2].y, -r + 1.0);        // ... at the end of the turn
+  EXPECT_NEAR(LaneFrameAngle(turn, Params{}), -kPi / 4, 0.1);
+  // A turn of less than 60 degrees ahead keeps the whole reach.
+  LaneCorridor gentle;
+  gentle.centre = {{0, 0}, {10, 0}, {10 + 30 * std::cos(0.7), -30 * std::sin(0.7)}};
+  EXPECT_EQ(SampledReach(gentle, 33.0, 0.0, /*turn_lane_frame=*/true), 33.0);
+}
+
+TEST(LaneCorridor, DividersThatCrossInATightTurnAreLeftOut) {
+  // A 90 deg right turn with a 1.5 m radius 8 m ahead of the vehicle.
+  LaneCorridor c;
+  c.centre = {{0, 0}, {8, 0}};
+  for (int k = 1; k <= 18; ++k) {
+    const double a = kPi / 2 * k / 18.0;
+    c.centre.push_back(Point2{8 + 1.5 * std::sin(a), -1.5 + 1.5 * std::cos(a)});
+  }
+  c.centre.push_back(Point2{9.5, -40});
+  c.position_m = 0.0;
+  c.width_m = 3.2;
+  c.right = NeighbourLane{3.2, false};
+  // Sampled up to 60 degrees into the arc (SampledReach), the right neighbour's far divider,
+  // 4.8 m right of the centre line (more than the 1.5 m radius), folds back behind its middle
+  // sample: that lane is left out; the own lane (+-1.6 m) stays.
+  const LaneSet set =
+      SampleLaneSet(c, 14.0, Pose2{0.0, 0.0, 0.0}, LaneSampling{false, 0.35});
+  ASSERT_TRUE(set.own);
+  for (int i = 0; i < 3; ++i) EXPECT_GT(set.own->left.points[i].y, set.own->right.points[i].y);
+  EXPECT_EQ(LaneProblem(*set.own), "");
+  EXPECT_FALSE(set.right);
+  // On a straight corridor the same neighbour is kept: it was left out for its crossing
+  // dividers, not for being a right lane.
+  c.centre = {{0, 0}, {100, 0}};
+  const LaneSet straight = SampleLaneSet(c, 14.0, Pose2{0.0, 0.0, 0.0});
+  ASSERT_TRUE(straight.right);
+  EXPECT_NEAR(straight.right->right.points[2].y, -4.8, 1e-9);
+}
+
+// A road straight for 30 m that then turns left through 90 degrees (radius 10 m).
+LaneCorridor StraightThenLeftTurn() {
+  LaneCorridor c;
+  c.centre = {{0, 0}, {30, 0}};
+  for (int k = 1; k <= 18; ++k) {
+    const double a = kPi / 2 * k / 18.0;
+    c.centre.push_back(Point2{30 + 10 * std::sin(a), 10 - 10 * std::cos(a)});
+  }
+  c.centre.push_back(Point2{40, 60});
+  c.width_m = 3.2;
+  c.right = NeighbourLane{3.2, false};
+  return c;
+}
+
+TEST(LaneCorridor, AStraightBeforeATurnIsSampledToWhereTheTurnStarts) {
+  const LaneCorridor c = StraightThenLeftTurn();
+  EXPECT_NEAR(StraightBeforeTurn(c, 45.0), 30.5, 0.5);
+  const LaneSet set = SampleLaneSet(c, 45.0, Pose2{0.0, 0.0, 0.0});
+  ASSERT_TRUE(set.own && set.right);
+  EXPECT_TRUE(set.own->straight_to_middle);
+  EXPECT_TRUE(set.right->straight_to_middle);
+  // Where the straight ends: the centre line's first 5 degree segment of the arc still counts
+  // (its chord turns 2.5 degrees).
+  EXPECT_NEAR(set.own->left.points[1].x, 30.5, 0.5);
+  EXPECT_NEAR(set.own->left.points[1].y, 1.6, 0.05);
+  // As the estimator fits it, the lane's centre stays on the straight up to the turn and then
+  // turns left; sampled at 0, reach/2 and reach (paper-literal sampling), the parabola bends
+  // more than a metre to the right on the straight first.
+  const core::Parabola centre = internal::FitLanes(set, "lanes", Params{}).own->Centre();
+  for (double x = 0.0; x <= 30.0; x += 2.5) EXPECT_NEAR(centre.Eval(x), 0.0, 0.05) << x;
+  EXPECT_GT(centre.Eval(38.0), 5.0);
+  LaneSampling paper;
+  paper.straight_before_turn = false;
+  const LaneSet halves = SampleLaneSet(c, 45.0, Pose2{0.0, 0.0, 0.0}, paper);
+  ASSERT_TRUE(halves.own);
+  EXPECT_FALSE(halves.own->straight_to_middle);
+  EXPECT_NEAR(halves.own->left.points[1].x, 22.5, 1e-9);
+  const core::Parabola dipping = internal::FitLanes(halves, "lanes", Params{}).own->Centre();
+  double lowest = 0.0;
+  for (double x = 0.0; x <= 30.0; x += 0.5) lowest = std::fmin(lowest, dipping.Eval(x));
+  EXPECT_LT(lowest, -1.0);
+  EXPECT_FALSE(LaneSamplingFor(ParamsPreset("paper-literal")).straight_before_turn);
+  EXPECT_TRUE(LaneSamplingFor(Params{}).straight_before_turn);
+}
+
+TEST(LaneCorridor, OnlyAStraightFollowedByATurnIsSampledToItsEnd) {
+  // Straight all the way, turning from the start (a constant curve), or a straight that ends
+  // too close to the reach: the paper's sampling.
+  LaneCorridor straight;
+  straight.centre = {{0, 0}, {100, 0}};
+  EXPECT_EQ(StraightBeforeTurn(straight, 45.0), 0.0);
+  EXPECT_FALSE(SampleLaneSet(straight, 45.0, Pose2{}).own->straight_to_middle);
+  LaneCorridor curve;
+  for (int k = 0; k <= 60; ++k) {
+    const double a = 1.2 * k / 60.0;  // radius 40 m, turning from the start
+    curve.centre.push_back(Point2{40 * std::sin(a), 40 - 40 * std::cos(a)});
+  }
+  EXPECT_EQ(StraightBeforeTurn(curve, 45.0), 0.0);
+  const LaneCorridor c = StraightThenLeftTurn();
+  EXPECT_EQ(StraightBeforeTurn(c, 33.0), 0.0);  // 3 m of turn within the reach
+  EXPECT_EQ(StraightBeforeTurn(c, 30.0), 0.0);  // no turn within the reach
+  LaneCorridor later = c;
+  later.position_m = 20.0;  // 10 m of straight left: a junction turn, sampled as the paper does
+  EXPECT_EQ(StraightBeforeTurn(later, 30.0), 0.0);
+  later.position_m = 12.0;  // 18 m of straight left
+  EXPECT_NEAR(StraightBeforeTurn(later, 30.0), 18.0, 0.5);
+}
+
+TEST(LaneCorridor, LaneYawRateFollowsTheLaneNotThePast) {
+  LaneCorridor c = StraightThenLeftTurn();  // radius 10 m from 30 m on
+  c.position_m = 10.0;
+  EXPECT_EQ(LaneYawRate(c, 8.0, 2.5), 0.0);  // on the straight
+  // Halfway through the turn: v / r, within the polyline's 5 degree segments (a 5 m window
+  // sees 25-30 degrees of them).
+  c.position_m = 30.0 + 10.0 * kPi / 4;
+  EXPECT_NEAR(LaneYawRate(c, 8.0, 2.5), 8.0 / 10.0, 0.11);
+  c.position_m = 30.0;  // entering it: half the window turns
+  EXPECT_NEAR(LaneYawRate(c, 8.0, 2.5), 0.4, 0.06);
+  // A car that has just left a turn onto a straight lane: the corridor starts with that lane,
+  // and what lies behind its start counts as straight.
+  LaneCorridor exit;
+  exit.centre = {{0, 0}, {0, 100}};
+  exit.position_m = 1.0;
+  EXPECT_EQ(LaneYawRate(exit, 5.0, 2.5), 0.0);
+  EXPECT_EQ(LaneYawRate(LaneCorridor{}, 5.0, 2.5), 0.0);
+}
+
+TEST(LaneCorridor, VehicleAcrossItsLaneGetsNoLanes) {
+  LaneCorridor c;
+  c.centre = {{0, 0}, {100, 0}};
+  c.position_m = 20.0;
+  // Heading north while the lane runs east: the samples do not run forward.
+  EXPECT_FALSE(SampleLaneSet(c, 40.0, Pose2{20.0, 0.0, kPi / 2}).own);
+  EXPECT_FALSE(SampleLaneSet(LaneCorridor{}, 40.0, Pose2{}).own);
+}
+
+}  // namespace
+}  // namespace criticality::plugin

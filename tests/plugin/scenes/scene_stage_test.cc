@@ -1,0 +1,252 @@
+// The scenes stage through a fake SUMO world, no SUMO: lanes from each object's own view
+// (neighbours of its edge that its class may use, the opposite direction's lane flagged as
+// counter traffic from either side), route ends, stop lines, what each driver is expected to do,
+// pedestrians on the footway, yaw rates, invalid objects and the Euler update.
+#include "plugin/scenes/scene_stage.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "../fake_sumo_world.h"
+#include "plugin/sumo/sumo_conventions.h"
+
+namespace criticality::plugin {
+namespace {
+
+using testing::FakeSumoWorld;
+
+// An observation of every object of the world, each vehicle in `egos` an ego with every other
+// object near it, read at the world's time.
+Observation Observe(FakeSumoWorld& w, const std::vector<std::string>& egos) {
+  Observation obs;
+  obs.time_s = w.StampOfLastStep();
+  obs.sumo_time_s = w.Time();
+  ReadScope scope;
+  scope.context_range_m = 1e9;
+  obs.surroundings = w.Observe(egos, scope);
+  return obs;
+}
+
+SceneStage Stage(FakeSumoWorld& w, bool euler = true) {
+  return SceneStage(SceneConfig{}, w.StepLength(), euler, &w, &w);
+}
+
+const Vehicle* VehicleIn(const Scene& s, const std::string& id) {
+  for (const Vehicle& v : s.vehicles) {
+    if (v.id == id) return &v;
+  }
+  return nullptr;
+}
+
+// An eastbound edge E of `lanes` lanes 3.2 m wide from x = 0 to 200, and its westbound twin W
+// placed left of it as netconvert places a two-way street's directions.
+void TwoWayStreet(FakeSumoWorld& w, int lanes) {
+  w.AddEdge("E", 0, 0, 200, 0, lanes);
+  const double w_axis = 0.5 * lanes * 3.2 + 0.5 * lanes * 3.2;  // E's half width + W's
+  w.AddEdge("W", 200, w_axis, 0, w_axis, lanes);
+}
+
+TEST(SceneStage, AVehicleSeesTheLanesOfItsEdgeItsClassMayUse) {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 300, 0, 3);
+  const double lane1_y = 0.0;  // lane 1 is the middle one
+  w.AddVehicle("ego", 50, lane1_y, 90, 10, "E_1", 50, {"E"});
+  SceneStage stage = Stage(w);
+  Scene s = stage.Run(Observe(w, {"ego"})).scenes.at(0);
+  ASSERT_TRUE(s.ego.lanes.own && s.ego.lanes.left && s.ego.lanes.right);
+  EXPECT_FALSE(s.ego.lanes.left->counter_traffic);
+  EXPECT_FALSE(s.ego.lanes.right->counter_traffic);
+  // In the ego's frame: its own lane +-1.6 m, the left one 1.6..4.8 m.
+  EXPECT_NEAR(s.ego.lanes.own->left.points[0].y, 1.6, 1e-9);
+  EXPECT_NEAR(s.ego.lanes.left->left.points[0].y, 4.8, 1e-9);
+  EXPECT_NEAR(s.ego.lanes.right->right.points[0].y, -4.8, 1e-9);
+  // A bus lane on the left is not the car's neighbour (and it is no counter lane either).
+  w.SetAllowed("E_2", {"bus"});
+  SceneStage again = Stage(w);
+  s = again.Run(Observe(w, {"ego"})).scenes.at(0);
+  EXPECT_FALSE(s.ego.lanes.left.has_value());
+  EXPECT_TRUE(s.ego.lanes.right.has_value());
+}
+
+TEST(SceneStage, TheOppositeDirectionIsCounterTrafficSeenFromEitherSide) {
+  FakeSumoWorld w;
+  TwoWayStreet(w, 1);
+  w.AddVehicle("ego", 60, 0, 90, 10, "E_0", 60, {"E"});         // eastbound
+  w.AddVehicle("oncoming", 120, 3.2, 270, 10, "W_0", 80, {"W"});  // westbound, left of the ego
+  SceneStage stage = Stage(w);
+  const SceneBatch batch = stage.Run(Observe(w, {"ego"}));
+  const Scene& s = batch.scenes.at(0);
+  ASSERT_TRUE(s.ego.lanes.own && s.ego.lanes.left);
+  EXPECT_TRUE(s.ego.lanes.left->counter_traffic);
+  EXPECT_FALSE(s.ego.lanes.right.has_value());
+  // The oncoming car sees the ego's lane as its own left lane, also flagged.
+  const Vehicle* oncoming = VehicleIn(s, "oncoming");
+  ASSERT_NE(oncoming, nullptr);
+  ASSERT_TRUE(oncoming->lanes && oncoming->lanes->own && oncoming->lanes->left);
+  EXPECT_TRUE(oncoming->lanes->left->counter_traffic);
+  // Its own lane is straight ahead of it in its own frame (it drives west: x grows westward).
+  EXPECT_NEAR(oncoming->lanes->own->left.points[2].y, 1.6, 1e-9);
+  EXPECT_GT(oncoming->lanes->own->left.points[2].x, 10.0);
+}
+
+TEST(SceneStage, AVehicleWhoseRouteEndsAheadLeavesThere) {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 100, 0, 1);
+  w.AddEdge("F", 100, 0, 200, 0, 1);
+  w.AddLink("E_0", "F_0");
+  w.AddVehicle("ends", 90, 0, 90, 10, "E_0", 90, {"E"});       // its route ends 10 m ahead
+  w.AddVehicle("goes_on", 60, 0, 90, 10, "E_0", 60, {"E", "F"});  // continues onto F
+  SceneStage stage = Stage(w);
+  const SceneBatch b = stage.Run(Observe(w, {"ends", "goes_on"}));
+  ASSERT_EQ(b.scenes.size(), 2u);
+  ASSERT_TRUE(b.scenes[0].ego.state.route_end_m.has_value());
+  EXPECT_NEAR(*b.scenes[0].ego.state.route_end_m, 10.0, 1e-9);
+  EXPECT_FALSE(b.scenes[1].ego.state.route_end_m.has_value());
+}
+
+TEST(SceneStage, ARedLightOrAYieldToAnApproachingFoeIsAStopLine) {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 100, 0, 1);
+  w.AddEdge("F", 100, 0, 200, 0, 1);
+  w.AddVehicle("red", 70, 0, 90, 10, "E_0", 70, {"E", "F"});
+  w.AddVehicle("green", 40, 0, 90, 10, "E_0", 40, {"E", "F"});
+  w.signals["red"] = SignalReport{30.0, 'r'};
+  w.signals["green"] = SignalReport{60.0, 'G'};
+  SceneStage stage = Stage(w);
+  SceneBatch b = stage.Run(Observe(w, {"red", "green"}));
+  const ObjectSnapshot& red = b.EgoOf(0);
+  ASSERT_TRUE(red.stop_line.has_value());
+  EXPECT_EQ(red.stop_line->reason, StopLine::Reason::kRedLight);
+  EXPECT_DOUBLE_EQ(red.stop_line->distance_m, 30.0);
+  EXPECT_FALSE(b.EgoOf(1).stop_line.has_value());
+  // A minor link with a foe approaching, within reach of the lane's end: yield there.
+  FakeSumoWorld y;
+  y.AddEdge("E", 0, 0, 100, 0, 1);
+  y.AddEdge("F", 100, 0, 200, 0, 1);
+  y.AddLink("E_0", "F_0", "m", /*has_foe=*/true);
+  y.AddVehicle("minor", 85, 0, 90, 10, "E_0", 85, {"E", "F"});
+  SceneStage ystage = Stage(y);
+  b = ystage.Run(Observe(y, {"minor"}));
+  ASSERT_TRUE(b.EgoOf(0).stop_line.has_value());
+  EXPECT_EQ(b.EgoOf(0).stop_line->reason, StopLine::Reason::kYield);
+  EXPECT_NEAR(b.EgoOf(0).stop_line->distance_m, 15.0, 1e-9);
+  // The same link without a foe: nothing to yield to.
+  FakeSumoWorld n;
+  n.AddEdge("E", 0, 0, 100, 0, 1);
+  n.AddEdge("F", 100, 0, 200, 0, 1);
+  n.AddLink("E_0", "F_0", "m", /*has_foe=*/false);
+  n.AddVehicle("minor", 85, 0, 90, 10, "E_0", 85, {"E", "F"});
+  SceneStage nstage = Stage(n);
+  EXPECT_FALSE(nstage.Run(Observe(n, {"minor"})).EgoOf(0).stop_line.has_value());
+}
+
+TEST(SceneStage, AFollowerExpectsToStopBehindALeaderThatMustStop) {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 200, 0, 1);
+  // The leader at 8 m/s must stop at a red light 10 m ahead of its front; the follower at
+  // 8 m/s, 4 m behind it (gap from SUMO), is expected to stop within 14 m: 64 / 28.
+  w.AddVehicle("leader", 100, 0, 90, 8, "E_0", 100, {"E"});
+  w.AddVehicle("follower", 91, 0, 90, 8, "E_0", 91, {"E"});
+  w.signals["leader"] = SignalReport{10.0, 'r'};
+  w.leaders["follower"] = LeaderReport{"leader", 4.0, 8.0, 0.0};
+  SceneStage stage = Stage(w);
+  const SceneBatch b = stage.Run(Observe(w, {"follower"}));
+  const std::optional<double> a = b.scenes.at(0).ego.state.expected_accel_mps2;
+  ASSERT_TRUE(a.has_value());
+  EXPECT_NEAR(*a, -64.0 / 28.0, 1e-9);
+  // Without the leader's obligation the follower at equal speed has nothing to react to.
+  w.signals.clear();
+  SceneStage plain = Stage(w);
+  EXPECT_FALSE(plain.Run(Observe(w, {"follower"})).scenes.at(0).ego.state.expected_accel_mps2);
+}
+
+TEST(SceneStage, AWalkerKeepsToTheFootwayUnlessItsNextEdgeIsACrossing) {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 200, 0, 2);
+  w.SetAllowed("E_0", {"pedestrian"});  // a sidewalk
+  w.AddEdge(":J_c0", 200, -3, 200, 10, 1, 3.0, {"pedestrian"});  // a crossing
+  w.AddEdge("S", 200, -2, 300, -2, 1, 2.0, {"pedestrian"});     // a sidewalk further on
+  w.AddVehicle("ego", 100, 1.6, 90, 10, "E_1", 100, {"E"});
+  w.AddPerson("strolls", 110, -1.6, 90, 1.2, "E_0", "S");
+  w.AddPerson("crosses", 120, -1.6, 90, 1.2, "E_0", ":J_c0");
+  w.AddPerson("ends_here", 130, -1.6, 90, 1.2, "E_0", "");
+  SceneStage stage = Stage(w);
+  const Scene s = stage.Run(Observe(w, {"ego"})).scenes.at(0);
+  ASSERT_EQ(s.pedestrians.size(), 3u);  // ID order: crosses, ends_here, strolls
+  EXPECT_FALSE(s.pedestrians[0].stays_on_footway);
+  EXPECT_TRUE(s.pedestrians[1].stays_on_footway);
+  EXPECT_TRUE(s.pedestrians[2].stays_on_footway);
+  EXPECT_DOUBLE_EQ(s.pedestrians[0].length_m, Pedestrian{}.length_m);
+}
+
+TEST(SceneStage, YawRateIsTheHeadingChangeOrWithLongStepsTheLanes) {
+  FakeSumoWorld w(0.1);
+  w.AddEdge("E", 0, 0, 300, 0, 1);
+  w.AddVehicle("ego", 50, 0, 90, 10, "E_0", 50, {"E"});
+  SceneStage stage = Stage(w);
+  stage.Run(Observe(w, {"ego"}));
+  w.Step();
+  w.Find("ego")->angle_deg = 88.0;  // turned 2 degrees left within 0.1 s
+  const Scene s = stage.Run(Observe(w, {"ego"})).scenes.at(0);
+  EXPECT_NEAR(s.ego.state.yaw_rate_radps, (2.0 * kPi / 180.0) / 0.1, 1e-9);
+  // With 1 s steps the stale heading change is replaced by the lane's: a straight lane, 0.
+  FakeSumoWorld slow(1.0);
+  slow.AddEdge("E", 0, 0, 300, 0, 1);
+  slow.AddVehicle("ego", 50, 0, 90, 10, "E_0", 50, {"E"});
+  SceneStage long_steps = Stage(slow);
+  long_steps.Run(Observe(slow, {"ego"}));
+  slow.Step();
+  slow.Find("ego")->angle_deg = 70.0;
+  EXPECT_NEAR(long_steps.Run(Observe(slow, {"ego"})).scenes.at(0).ego.state.yaw_rate_radps, 0.0,
+              1e-12);
+}
+
+TEST(SceneStage, InvalidObjectsAreLeftOutCountedOncePerStepAndRangeIsExact) {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 300, 0, 1);
+  w.AddVehicle("ego", 50, 0, 90, 10, "E_0", 50, {"E"});
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  w.AddPerson("lost", nan, nan, nan, 1.0);
+  // The ego's centre is at x = 47.5; 80 m on is 127.5: a front bumper at 130 puts the
+  // centre at 127.5 (in range), 131 at 128.5 (out).
+  w.AddVehicle("in", 130, 0, 90, 0, "E_0", 130, {"E"});
+  w.AddVehicle("out", 131, 0.5, 90, 0, "", 0, {});
+  SceneStage stage = Stage(w);
+  const SceneBatch b = stage.Run(Observe(w, {"ego"}));
+  ASSERT_EQ(b.scenes.size(), 1u);
+  ASSERT_EQ(b.scenes[0].vehicles.size(), 1u);
+  EXPECT_EQ(b.scenes[0].vehicles[0].id, "in");
+  EXPECT_TRUE(b.scenes[0].pedestrians.empty());
+  EXPECT_EQ(stage.invalid_objects(), 1);
+  stage.Run(Observe(w, {"ego"}));
+  EXPECT_EQ(stage.invalid_objects(), 2);
+}
+
+TEST(SceneStage, ScenesSayWhetherSumoMovesObjectsByItsEulerUpdate) {
+  FakeSumoWorld w(0.5);
+  w.AddEdge("E", 0, 0, 300, 0, 1);
+  w.AddVehicle("ego", 50, 0, 90, 10, "E_0", 50, {"E"});
+  SceneStage euler = Stage(w, true);
+  SceneStage ballistic = Stage(w, false);
+  EXPECT_DOUBLE_EQ(euler.Run(Observe(w, {"ego"})).scenes.at(0).euler_update_step_s, 0.5);
+  EXPECT_DOUBLE_EQ(ballistic.Run(Observe(w, {"ego"})).scenes.at(0).euler_update_step_s, 0.0);
+}
+
+TEST(SceneStage, EgoCentreAndMathYawComeFromSumosFrontBumperAndNavigationAngle) {
+  FakeSumoWorld w;
+  w.AddEdge("N", 10, 0, 10, 300, 1);  // northbound
+  w.AddVehicle("ego", 10, 100, 0, 10, "N_0", 100, {"N"});
+  SceneStage stage = Stage(w);
+  const Scene s = stage.Run(Observe(w, {"ego"})).scenes.at(0);
+  EXPECT_NEAR(s.ego.state.x_m, 10.0, 1e-9);
+  EXPECT_NEAR(s.ego.state.y_m, 97.5, 1e-9);  // half of 5 m behind the front
+  EXPECT_NEAR(s.ego.state.yaw_rad, kPi / 2, 1e-12);
+  // Its lane runs straight ahead in its own frame, though it is vertical in the world.
+  ASSERT_TRUE(s.ego.lanes.own);
+  EXPECT_NEAR(s.ego.lanes.own->left.points[2].y, 1.6, 1e-9);
+}
+
+}  // namespace
+}  // namespace criticality::plugin
