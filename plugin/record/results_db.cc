@@ -7,6 +7,8 @@
 #include <cmath>
 #include <ctime>
 
+#include "plugin/record/result_views.h"
+
 namespace criticality::plugin {
 namespace {
 
@@ -104,11 +106,15 @@ ResultsDb::ResultsDb(const std::string& path) : path_(path) {
     peak_warning_ = Prepare("UPDATE warnings SET peak_p=? WHERE id=?");
     close_warning_ = Prepare("UPDATE warnings SET end_s=? WHERE id=?");
     action_ = Prepare("INSERT INTO actions VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?)");
-    // ?16: the tolerance for an episode that ended just before the impact (one step).
+    // The views that define a warning's outcome and a collision's anticipation
+    // (result_views.sql): readers of the file query them; the anticipation stored with each
+    // collision is the view's, taken when the collision is recorded.
+    Exec(ResultViewsSql(ResultViewKeys::RunFile()));
     collision_ = Prepare(
-        "INSERT INTO collisions VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,"
-        "(SELECT ?2 - start_s FROM warnings WHERE run_id=?1 AND ego IN (?3, ?4) AND start_s <= ?2 "
-        "AND (end_s IS NULL OR end_s >= ?2 - ?15) ORDER BY start_s DESC LIMIT 1))");
+        "INSERT INTO collisions VALUES(?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,NULL)");
+    anticipation_ = Prepare(
+        "UPDATE collisions SET anticipation_s = (SELECT anticipation_s FROM collision_anticipation "
+        "WHERE collision_rowid = ?1) WHERE rowid = ?1");
     ego_event_ = Prepare("INSERT INTO ego_events VALUES(?,?,?,?,?)");
     critical_event_ = Prepare("INSERT INTO critical_events VALUES(?,?,?,?,?,?)");
     step_time_ = Prepare("INSERT INTO step_times VALUES(?,?,?,?,?,?,?,?,?,?,?)");
@@ -123,11 +129,11 @@ ResultsDb::~ResultsDb() { Close(); }
 
 void ResultsDb::Close() {
   for (sqlite3_stmt* s : {step_, open_warning_, peak_warning_, close_warning_, action_, collision_,
-                          ego_event_, critical_event_, step_time_, heartbeat_}) {
+                          anticipation_, ego_event_, critical_event_, step_time_, heartbeat_}) {
     sqlite3_finalize(s);
   }
-  step_ = open_warning_ = peak_warning_ = close_warning_ = action_ = collision_ = ego_event_ =
-      critical_event_ = step_time_ = heartbeat_ = nullptr;
+  step_ = open_warning_ = peak_warning_ = close_warning_ = action_ = collision_ = anticipation_ =
+      ego_event_ = critical_event_ = step_time_ = heartbeat_ = nullptr;
   // An open transaction is rolled back: only what Commit() or EndRun() committed stays.
   if (db_) sqlite3_close(db_);
   db_ = nullptr;
@@ -167,7 +173,6 @@ void ResultsDb::Step(sqlite3_stmt* s, const char* what) {
 
 void ResultsDb::BeginRun(const std::string& options, const std::string& sumo_version,
                          const std::string& egos, double step_length_s) {
-  step_length_s_ = step_length_s;
   sqlite3_stmt* s = Prepare(
       "INSERT INTO runs(started_utc,status,heartbeat_unix,step_length_s,sumo_version,egos,options)"
       " VALUES(?,'running',?,?,?,?,?)");
@@ -284,8 +289,9 @@ void ResultsDb::AddCollision(double time_s, const SumoCollision& c, bool involve
   sqlite3_bind_double(s, 12, c.collider_speed_mps);
   sqlite3_bind_double(s, 13, c.victim_speed_mps);
   sqlite3_bind_int(s, 14, involves_ego ? 1 : 0);
-  sqlite3_bind_double(s, 15, step_length_s_ + 1e-6);
   Step(s, "collision");
+  sqlite3_bind_int64(anticipation_, 1, sqlite3_last_insert_rowid(db_));
+  Step(anticipation_, "collision anticipation");
 }
 
 void ResultsDb::AddEgoEvent(double time_s, const std::string& ego, const std::string& event,

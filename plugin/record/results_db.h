@@ -53,9 +53,11 @@ class ResultsDb {
   void UpdateWarningPeak(long long id, double peak);
   void CloseWarning(long long id, double end_s);
   void AddAction(double time_s, const ActionEvent& a);
-  /** Records a collision and its anticipation time: collision time minus the start of the
-   *  latest warning episode of the collider or victim that began at or before it and was still
-   *  open at it, or ended at most one step before it; NULL when there is none. */
+  /** Records a collision and its anticipation time as the view collision_anticipation
+   *  defines it (result_views.sql): collision time minus the start of the latest warning
+   *  episode of the collider or victim that began before it and was still open at it, or ended
+   *  at most one step before it; NULL when there is none. Record a step's collisions before its
+   *  warnings (an episode that opens at the impact does not anticipate it). */
   void AddCollision(double time_s, const SumoCollision& c, bool involves_ego);
   void AddEgoEvent(double time_s, const std::string& ego, const std::string& event,
                    const std::string& detail);
@@ -85,7 +87,6 @@ class ResultsDb {
   std::string path_;
   sqlite3* db_{nullptr};
   long long run_id_{0};
-  double step_length_s_{0.0};
   double last_heartbeat_{0.0};
   sqlite3_stmt* step_{nullptr};
   sqlite3_stmt* open_warning_{nullptr};
@@ -94,6 +95,7 @@ class ResultsDb {
   sqlite3_stmt* close_warning_{nullptr};
   sqlite3_stmt* action_{nullptr};
   sqlite3_stmt* collision_{nullptr};
+  sqlite3_stmt* anticipation_{nullptr};
   sqlite3_stmt* ego_event_{nullptr};
   sqlite3_stmt* step_time_{nullptr};
   sqlite3_stmt* heartbeat_{nullptr};

@@ -243,6 +243,314 @@ std::pair<int, std::string> RunCaptured(const std::string& cmd) {
           nl == std::string::npos ? text : text.substr(nl + 1)};
 }
 
+// What every table is computed from: the runs' metrics, the grid, and braking's effect.
+struct ReportInputs {
+  const json& info;
+  std::vector<AxisInfo> axes;
+  RunMetricsSet metrics;
+  BrakingEffect braking;
+  std::map<std::string, std::size_t> scenario_order;  ///< as in the plan
+};
+
+std::map<std::string, std::size_t> ScenarioOrder(const json& info) {
+  std::map<std::string, std::size_t> order;
+  if (info.contains("scenarios")) {
+    for (const json& s : info["scenarios"]) order.emplace(s.value("name", ""), order.size());
+  }
+  return order;
+}
+
+// The plan position of a scenario; `unknown` for one the plan does not list.
+std::size_t ScenarioPos(const ReportInputs& in, const std::string& scenario, std::size_t unknown) {
+  const auto it = in.scenario_order.find(scenario);
+  return it == in.scenario_order.end() ? unknown : it->second;
+}
+
+std::size_t ValuePos(const AxisInfo& a, const std::string& v) {
+  const auto it = std::find(a.values.begin(), a.values.end(), v);
+  return static_cast<std::size_t>(it - a.values.begin());
+}
+
+std::optional<long long> Lookup(const std::map<std::size_t, long long>& m, std::size_t run) {
+  const auto it = m.find(run);
+  return it == m.end() ? std::nullopt : std::optional<long long>(it->second);
+}
+
+void AddRun(const ReportInputs& in, Aggregate& g, const RunMetrics& m) {
+  g.Add(m, Lookup(in.braking.avoided, m.run_index), Lookup(in.braking.false_alarms, m.run_index));
+}
+
+// Per scenario and grouping parameters.
+Table SummaryTable(const ReportInputs& in) {
+  Table summary;
+  summary.columns = {"scenario"};
+  for (const AxisInfo& a : in.axes) {
+    if (a.grouping) summary.columns.push_back(a.name);
+  }
+  summary.columns.insert(summary.columns.end(), kMetricColumns.begin(), kMetricColumns.end());
+  std::map<std::vector<std::size_t>, std::pair<std::vector<std::string>, Aggregate>> groups;
+  for (const RunMetrics& m : in.metrics.runs) {
+    std::vector<std::size_t> key{ScenarioPos(in, m.scenario, in.scenario_order.size())};
+    std::vector<std::string> cells{m.scenario};
+    for (const AxisInfo& a : in.axes) {
+      if (!a.grouping) continue;
+      const auto it = m.params.find(a.name);
+      const std::string v = it == m.params.end() ? "" : it->second;
+      key.push_back(ValuePos(a, v));
+      cells.push_back(v);
+    }
+    auto& g = groups[key];
+    if (g.first.empty()) g.first = cells;
+    AddRun(in, g.second, m);
+  }
+  for (const auto& [key, g] : groups) {
+    std::vector<std::string> row = g.first;
+    const auto cells = g.second.Cells(in.metrics.available);
+    row.insert(row.end(), cells.begin(), cells.end());
+    summary.rows.push_back(std::move(row));
+  }
+  return summary;
+}
+
+// The rows of one value of one axis: over all scenarios, then per scenario in plan order.
+void AddParameterRows(const ReportInputs& in, const AxisInfo& a, const std::string& v,
+                      Table& by_param) {
+  std::map<std::size_t, std::pair<std::string, Aggregate>> per;
+  Aggregate all;
+  for (const RunMetrics& m : in.metrics.runs) {
+    const auto it = m.params.find(a.name);
+    if (it == m.params.end() || it->second != v) continue;
+    auto& p = per[ScenarioPos(in, m.scenario, 9999)];
+    p.first = m.scenario;
+    AddRun(in, p.second, m);
+    AddRun(in, all, m);
+  }
+  auto add_row = [&](const std::string& scenario, const Aggregate& g) {
+    std::vector<std::string> row{a.name, v, scenario};
+    const auto cells = g.Cells(in.metrics.available);
+    row.insert(row.end(), cells.begin(), cells.end());
+    by_param.rows.push_back(std::move(row));
+  };
+  add_row("(all)", all);
+  for (const auto& [pos, p] : per) add_row(p.first, p.second);
+}
+
+// Per parameter value, per scenario and over all scenarios.
+Table ByParameterTable(const ReportInputs& in) {
+  Table by_param;
+  by_param.columns = {"parameter", "value", "scenario"};
+  by_param.columns.insert(by_param.columns.end(), kMetricColumns.begin(), kMetricColumns.end());
+  for (const AxisInfo& a : in.axes) {
+    if (!a.grouping) continue;
+    for (const std::string& v : a.values) AddParameterRows(in, a, v, by_param);
+  }
+  return by_param;
+}
+
+Table FailuresTable(SqliteDb& db) {
+  Table failures;
+  failures.columns = {"run_index", "scenario", "parameters", "status", "exit_code", "error"};
+  Statement s = db.Prepare(
+      "SELECT run_index, scenario, label, status, exit_code, signal, error FROM campaign_runs "
+      "WHERE status != 'ok' ORDER BY run_index");
+  while (s.Step()) {
+    failures.rows.push_back({Cell(s.Int(0)), s.Text(1), s.Text(2), s.Text(3),
+                             s.IsNull(4) ? (s.IsNull(5) ? "" : "signal " + s.Text(5)) : s.Text(4),
+                             s.Text(6)});
+  }
+  return failures;
+}
+
+// Every table of the report, as written.
+struct ReportTables {
+  Table summary, by_param, failures;
+  Hotspots hot;
+  Reliability rel;
+};
+
+void WriteTables(const ReportTables& t, ReportResult& result) {
+  WriteCsv(t.summary, result.dir / "summary.csv");
+  WriteCsv(t.by_param, result.dir / "by_parameter.csv");
+  WriteCsv(t.failures, result.dir / "failures.csv");
+  WriteCsv(t.hot.counts, result.dir / "hotspots.csv");
+  WriteCsv(t.hot.points, result.dir / "events.csv");
+  result.files = {"summary.csv", "by_parameter.csv", "failures.csv", "hotspots.csv", "events.csv"};
+  if (t.rel.available) {
+    WriteCsv(t.rel.bins, result.dir / "reliability.csv");
+    result.files.push_back("reliability.csv");
+  }
+}
+
+// The network file of a scenario, for its map; "" when it cannot be found.
+std::string NetFileOf(const Scenario& sc) {
+  try {
+    const fs::path cfg = SumoConfigOf(sc);
+    if (!cfg.empty() && fs::exists(cfg)) {
+      const auto nets = SumoConfigFiles(cfg, "net-file");
+      if (!nets.empty() && fs::exists(nets.front())) return nets.front().string();
+    }
+  } catch (const CampaignError&) {
+  }
+  return "";
+}
+
+json ScenariosManifest(const json& info) {
+  json out = json::array();
+  if (!info.contains("scenarios")) return out;
+  for (const json& s : info["scenarios"]) {
+    Scenario sc;
+    sc.name = s.value("name", "");
+    sc.path = s.value("path", "");
+    sc.kind =
+        s.value("kind", "") == "cfg" ? ScenarioKind::kDriverConfig : ScenarioKind::kSumoConfig;
+    out.push_back({{"name", sc.name}, {"path", sc.path.string()}, {"net_file", NetFileOf(sc)}});
+  }
+  return out;
+}
+
+// Run counts for the headline.
+struct RunCounts {
+  std::size_t planned{0}, complete{0};
+  long long ok{0}, failed{0};
+};
+
+RunCounts CountRuns(const CampaignFolder& folder, const RunMetricsSet& metrics) {
+  RunCounts c;
+  c.planned = folder.runs();
+  c.complete = metrics.runs.size();
+  for (const RunMetrics& m : metrics.runs) (m.ok ? c.ok : c.failed) += 1;
+  return c;
+}
+
+// The manifest for the figure script (its notes are added once they are complete).
+json Manifest(const ReportInputs& in, const ReportTables& t, const RunCounts& c,
+              const ReportOptions& o, const std::vector<std::string>& files) {
+  json manifest;
+  manifest["name"] = in.info.value("name", "campaign");
+  manifest["runs"] = c.planned;
+  manifest["complete"] = c.complete;
+  manifest["ok"] = c.ok;
+  manifest["failed"] = c.failed;
+  manifest["grace_s"] = o.grace_s;
+  manifest["axes"] = json::array();
+  for (const AxisInfo& a : in.axes) {
+    manifest["axes"].push_back(
+        {{"name", a.name}, {"target", a.target}, {"values", a.values}, {"grouping", a.grouping}});
+  }
+  manifest["scenarios"] = ScenariosManifest(in.info);
+  const Reliability& rel = t.rel;
+  manifest["reliability"] = {{"available", rel.available},
+                             {"reason", rel.reason},
+                             {"steps", rel.steps},
+                             {"followed", rel.followed},
+                             {"ego_collisions", rel.ego_collisions},
+                             {"brier", rel.available ? json(rel.brier) : json()}};
+  manifest["tables"] = files;
+  return manifest;
+}
+
+// A section of tables: the table, or `empty` when it has no rows.
+void TableSection(std::ostream& md, const std::string& title, const Table& t,
+                  const std::string& empty, std::size_t max_rows = 0) {
+  md << "## " << title << "\n\n";
+  if (t.rows.empty())
+    md << empty << "\n\n";
+  else
+    md << MarkdownTable(t, max_rows) << "\n";
+}
+
+void ReliabilitySection(std::ostream& md, const Reliability& rel) {
+  md << "## Reliability (is p calibrated?)\n\n";
+  if (!rel.available) {
+    md << "Not computed: " << rel.reason << ".\n\n";
+    return;
+  }
+  md << rel.steps << " estimates of egos in successful runs (up to each ego's first "
+     << "collision), " << rel.ego_collisions << " egos collided; " << rel.followed
+     << " estimates were followed by their ego's collision within the horizon. Brier "
+     << "score " << Cell(rel.brier, 4)
+     << ". Consecutive steps are correlated: read counts as estimates, not independent "
+        "trials.\n\n"
+     << MarkdownTable(rel.bins) << "\n";
+}
+
+void ColumnsSection(std::ostream& md, double grace_s) {
+  md << "\n## Columns\n\n"
+     << "- `collisions`: every collision SUMO reported; `ego_collisions`: those involving an "
+        "ego; `warned_collisions`: ego collisions with a warning before them (anticipation "
+        "known).\n"
+     << "- `anticipation_*_s`: collision time minus the start of the warning before it "
+        "(the driver's anticipation_s), over warned ego collisions.\n"
+     << "- `false_alarms`: warning episodes with no collision of their ego, and no critical "
+        "event of it (its body overlapping another's, braking harder than its vehicle type's "
+        "decel: the driver's critical_events table), from their start until "
+     << Cell(grace_s, 2)
+     << " s after their end; in an act=brake run, a warning of an ego that collided in the "
+        "same run with act=warn (or none) is not counted (its braking avoided the "
+        "collision).\n"
+     << "- `collisions_avoided`: for act=brake runs, ego collisions of the same run with "
+        "act=warn (or none) minus its own.\n"
+     << "- `estimator_ms_*`: estimator time per estimate (steps table); `wall_s_mean`: wall "
+        "time per run.\n";
+}
+
+void WriteSummaryMarkdown(const fs::path& file, const std::string& name, const RunCounts& c,
+                          const ReportTables& t, const std::vector<std::string>& notes,
+                          double grace_s) {
+  std::ofstream md(file);
+  md << "# Campaign " << name << ": report\n\n"
+     << c.planned << " runs planned, " << c.complete << " complete (" << c.ok << " ok, " << c.failed
+     << " failed), " << (c.planned - c.complete)
+     << " not complete. Merged database: `campaign.sqlite`. Metrics count successful runs "
+        "only; seeds (SUMO `seed`) are aggregated over.\n\n"
+     << "## Per scenario and parameters\n\n"
+     << MarkdownTable(t.summary) << "\n";
+  TableSection(md, "Per parameter value", t.by_param, "(no grid parameters)");
+  TableSection(md, "Failed runs", t.failures, "None.", 50);
+  TableSection(md, "Hotspots (where collisions and warnings happened)", t.hot.counts,
+               "No located collisions or warnings.", 30);
+  ReliabilitySection(md, t.rel);
+  md << "## Not computed\n\n";
+  if (notes.empty()) md << "Everything was computable.\n";
+  for (const std::string& n : notes) md << "- " << n << "\n";
+  ColumnsSection(md, grace_s);
+  if (!md) throw CampaignError("cannot write '" + file.string() + "'");
+}
+
+// The figures and index.html, by campaign_report.py; says in the result why not when not.
+void MakeFigures(const ReportOptions& o, ReportResult& result) {
+  if (!o.plots) {
+    result.figures_missing = "--no-plots";
+    return;
+  }
+  std::string why;
+  const std::string python = FindPython(o.python, why);
+  const fs::path script = FindScript(o.script);
+  if (python.empty()) {
+    result.figures_missing = why + "; tables are in " + (result.dir / "summary.md").string();
+    return;
+  }
+  if (script.empty() || !fs::exists(script)) {
+    result.figures_missing = "figure script not found (" +
+                             (script.empty() ? std::string("none built in") : script.string()) +
+                             "; give --script or CRIT_CAMPAIGN_REPORT_SCRIPT)";
+    return;
+  }
+  const auto [rc, last] =
+      RunCaptured(Quote(python) + " " + Quote(script.string()) + " " + Quote(result.dir.string()));
+  if (rc != 0) {
+    result.figures_missing = script.filename().string() + " failed: " + last;
+    return;
+  }
+  result.figures = true;
+  for (const auto& e : fs::directory_iterator(result.dir)) {
+    const std::string ext = e.path().extension().string();
+    if (ext == ".png" || ext == ".svg" || ext == ".html")
+      result.files.push_back(e.path().filename().string());
+  }
+  std::sort(result.files.begin() + 1, result.files.end());
+}
+
 }  // namespace
 
 ReportResult MakeReport(const CampaignFolder& folder, const ReportOptions& o) {
@@ -252,264 +560,37 @@ ReportResult MakeReport(const CampaignFolder& folder, const ReportOptions& o) {
   const fs::path db_path = folder.dir() / "campaign.sqlite";
   if (!fs::exists(db_path))
     throw CampaignError("no " + db_path.string() + ": run `criticality-campaign merge` first");
+  // The grace is written into the result views as a number.
+  if (!std::isfinite(o.grace_s)) throw CampaignError("--grace: not a finite number of seconds");
   SqliteDb db(db_path.string(), false);
-  const json& info = folder.info();
-  const std::vector<AxisInfo> axes = ReadAxes(info);
 
-  RunMetricsSet metrics = LoadRunMetrics(db, o.grace_s);
-  const MetricsAvailability& av = metrics.available;
+  ReportInputs in{folder.info(),
+                  ReadAxes(folder.info()),
+                  LoadRunMetrics(db, o.grace_s),
+                  {},
+                  ScenarioOrder(folder.info())};
   std::vector<std::string>& notes = result.notes;
-  notes = metrics.notes;
-  const BrakingEffect braking = CompareBraking(metrics.runs, axes, av.ego_collisions, notes);
-  auto lookup = [](const std::map<std::size_t, long long>& m,
-                   std::size_t run) -> std::optional<long long> {
-    const auto it = m.find(run);
-    return it == m.end() ? std::nullopt : std::optional<long long>(it->second);
-  };
-  auto add = [&](Aggregate& g, const RunMetrics& m) {
-    g.Add(m, lookup(braking.avoided, m.run_index), lookup(braking.false_alarms, m.run_index));
-  };
+  notes = in.metrics.notes;
+  in.braking = CompareBraking(in.metrics.runs, in.axes, in.metrics.available.ego_collisions, notes);
 
-  // Scenario order as in the plan.
-  std::map<std::string, std::size_t> scenario_order;
-  if (info.contains("scenarios")) {
-    for (const json& s : info["scenarios"])
-      scenario_order.emplace(s.value("name", ""), scenario_order.size());
-  }
-  auto value_pos = [&](const AxisInfo& a, const std::string& v) {
-    const auto it = std::find(a.values.begin(), a.values.end(), v);
-    return static_cast<std::size_t>(it - a.values.begin());
-  };
+  ReportTables t{
+      SummaryTable(in), ByParameterTable(in), FailuresTable(db), ComputeHotspots(db), {}};
+  notes.insert(notes.end(), t.hot.notes.begin(), t.hot.notes.end());
+  t.rel = ComputeReliability(db, o.default_horizon_s, o.reliability_min_collisions);
+  if (!t.rel.available) notes.push_back("reliability diagram: " + t.rel.reason);
+  WriteTables(t, result);
 
-  // Per scenario and grouping parameters.
-  Table summary;
-  summary.columns = {"scenario"};
-  for (const AxisInfo& a : axes) {
-    if (a.grouping) summary.columns.push_back(a.name);
-  }
-  summary.columns.insert(summary.columns.end(), kMetricColumns.begin(), kMetricColumns.end());
-  std::map<std::vector<std::size_t>, std::pair<std::vector<std::string>, Aggregate>> groups;
-  for (const RunMetrics& m : metrics.runs) {
-    std::vector<std::size_t> key{scenario_order.count(m.scenario) ? scenario_order[m.scenario]
-                                                                  : scenario_order.size()};
-    std::vector<std::string> cells{m.scenario};
-    for (const AxisInfo& a : axes) {
-      if (!a.grouping) continue;
-      const auto it = m.params.find(a.name);
-      const std::string v = it == m.params.end() ? "" : it->second;
-      key.push_back(value_pos(a, v));
-      cells.push_back(v);
-    }
-    auto& g = groups[key];
-    if (g.first.empty()) g.first = cells;
-    add(g.second, m);
-  }
-  for (const auto& [key, g] : groups) {
-    std::vector<std::string> row = g.first;
-    const auto cells = g.second.Cells(av);
-    row.insert(row.end(), cells.begin(), cells.end());
-    summary.rows.push_back(std::move(row));
-  }
-
-  // Per parameter value, per scenario and over all scenarios.
-  Table by_param;
-  by_param.columns = {"parameter", "value", "scenario"};
-  by_param.columns.insert(by_param.columns.end(), kMetricColumns.begin(), kMetricColumns.end());
-  for (const AxisInfo& a : axes) {
-    if (!a.grouping) continue;
-    for (const std::string& v : a.values) {
-      std::map<std::size_t, std::pair<std::string, Aggregate>> per;
-      Aggregate all;
-      for (const RunMetrics& m : metrics.runs) {
-        const auto it = m.params.find(a.name);
-        if (it == m.params.end() || it->second != v) continue;
-        auto& p = per[scenario_order.count(m.scenario) ? scenario_order[m.scenario] : 9999];
-        p.first = m.scenario;
-        add(p.second, m);
-        add(all, m);
-      }
-      auto add_row = [&](const std::string& scenario, const Aggregate& g) {
-        std::vector<std::string> row{a.name, v, scenario};
-        const auto cells = g.Cells(av);
-        row.insert(row.end(), cells.begin(), cells.end());
-        by_param.rows.push_back(std::move(row));
-      };
-      add_row("(all)", all);
-      for (const auto& [pos, p] : per) add_row(p.first, p.second);
-    }
-  }
-
-  // Failed runs.
-  Table failures;
-  failures.columns = {"run_index", "scenario", "parameters", "status", "exit_code", "error"};
-  {
-    Statement s = db.Prepare(
-        "SELECT run_index, scenario, label, status, exit_code, signal, error FROM campaign_runs "
-        "WHERE status != 'ok' ORDER BY run_index");
-    while (s.Step()) {
-      failures.rows.push_back({Cell(s.Int(0)), s.Text(1), s.Text(2), s.Text(3),
-                               s.IsNull(4) ? (s.IsNull(5) ? "" : "signal " + s.Text(5)) : s.Text(4),
-                               s.Text(6)});
-    }
-  }
-
-  const Hotspots hot = ComputeHotspots(db);
-  notes.insert(notes.end(), hot.notes.begin(), hot.notes.end());
-  const Reliability rel = ComputeReliability(db, o.default_horizon_s, o.reliability_min_collisions);
-  if (!rel.available) notes.push_back("reliability diagram: " + rel.reason);
-
-  WriteCsv(summary, result.dir / "summary.csv");
-  WriteCsv(by_param, result.dir / "by_parameter.csv");
-  WriteCsv(failures, result.dir / "failures.csv");
-  WriteCsv(hot.counts, result.dir / "hotspots.csv");
-  WriteCsv(hot.points, result.dir / "events.csv");
-  result.files = {"summary.csv", "by_parameter.csv", "failures.csv", "hotspots.csv", "events.csv"};
-  if (rel.available) {
-    WriteCsv(rel.bins, result.dir / "reliability.csv");
-    result.files.push_back("reliability.csv");
-  }
-
-  // Counts for the headline.
-  long long ok = 0, failed = 0;
-  for (const RunMetrics& m : metrics.runs) (m.ok ? ok : failed) += 1;
-  const std::size_t complete = metrics.runs.size();
-
-  // The manifest for the figure script.
-  json manifest;
-  manifest["name"] = info.value("name", "campaign");
-  manifest["runs"] = folder.runs();
-  manifest["complete"] = complete;
-  manifest["ok"] = ok;
-  manifest["failed"] = failed;
-  manifest["grace_s"] = o.grace_s;
-  manifest["axes"] = json::array();
-  for (const AxisInfo& a : axes) {
-    manifest["axes"].push_back(
-        {{"name", a.name}, {"target", a.target}, {"values", a.values}, {"grouping", a.grouping}});
-  }
-  manifest["scenarios"] = json::array();
-  if (info.contains("scenarios")) {
-    for (const json& s : info["scenarios"]) {
-      Scenario sc;
-      sc.name = s.value("name", "");
-      sc.path = s.value("path", "");
-      sc.kind =
-          s.value("kind", "") == "cfg" ? ScenarioKind::kDriverConfig : ScenarioKind::kSumoConfig;
-      std::string net;
-      try {
-        const fs::path cfg = SumoConfigOf(sc);
-        if (!cfg.empty() && fs::exists(cfg)) {
-          const auto nets = SumoConfigFiles(cfg, "net-file");
-          if (!nets.empty() && fs::exists(nets.front())) net = nets.front().string();
-        }
-      } catch (const CampaignError&) {
-      }
-      manifest["scenarios"].push_back(
-          {{"name", sc.name}, {"path", sc.path.string()}, {"net_file", net}});
-    }
-  }
-  manifest["reliability"] = {{"available", rel.available},
-                             {"reason", rel.reason},
-                             {"steps", rel.steps},
-                             {"followed", rel.followed},
-                             {"ego_collisions", rel.ego_collisions},
-                             {"brier", rel.available ? json(rel.brier) : json()}};
-  manifest["tables"] = result.files;
-
-  // Markdown summary.
-  {
-    std::ofstream md(result.dir / "summary.md");
-    md << "# Campaign " << manifest["name"].get<std::string>() << ": report\n\n"
-       << folder.runs() << " runs planned, " << complete << " complete (" << ok << " ok, " << failed
-       << " failed), " << (folder.runs() - complete)
-       << " not complete. Merged database: `campaign.sqlite`. Metrics count successful runs "
-          "only; seeds (SUMO `seed`) are aggregated over.\n\n"
-       << "## Per scenario and parameters\n\n"
-       << MarkdownTable(summary) << "\n"
-       << "## Per parameter value\n\n";
-    if (by_param.rows.empty())
-      md << "(no grid parameters)\n\n";
-    else
-      md << MarkdownTable(by_param) << "\n";
-    md << "## Failed runs\n\n";
-    if (failures.rows.empty())
-      md << "None.\n\n";
-    else
-      md << MarkdownTable(failures, 50) << "\n";
-    md << "## Hotspots (where collisions and warnings happened)\n\n";
-    if (hot.counts.rows.empty())
-      md << "No located collisions or warnings.\n\n";
-    else
-      md << MarkdownTable(hot.counts, 30) << "\n";
-    md << "## Reliability (is p calibrated?)\n\n";
-    if (rel.available) {
-      md << rel.steps << " estimates of egos in successful runs (up to each ego's first "
-         << "collision), " << rel.ego_collisions << " egos collided; " << rel.followed
-         << " estimates were followed by their ego's collision within the horizon. Brier "
-         << "score " << Cell(rel.brier, 4)
-         << ". Consecutive steps are correlated: read counts as estimates, not independent "
-            "trials.\n\n"
-         << MarkdownTable(rel.bins) << "\n";
-    } else {
-      md << "Not computed: " << rel.reason << ".\n\n";
-    }
-    md << "## Not computed\n\n";
-    if (notes.empty()) md << "Everything was computable.\n";
-    for (const std::string& n : notes) md << "- " << n << "\n";
-    md << "\n## Columns\n\n"
-       << "- `collisions`: every collision SUMO reported; `ego_collisions`: those involving an "
-          "ego; `warned_collisions`: ego collisions with a warning before them (anticipation "
-          "known).\n"
-       << "- `anticipation_*_s`: collision time minus the start of the warning before it "
-          "(the driver's anticipation_s), over warned ego collisions.\n"
-       << "- `false_alarms`: warning episodes with no collision of their ego, and no critical "
-          "event of it (its body overlapping another's, braking harder than its vehicle type's "
-          "decel: the driver's critical_events table), from their start until "
-       << Cell(o.grace_s, 2)
-       << " s after their end; in an act=brake run, a warning of an ego that collided in the "
-          "same run with act=warn (or none) is not counted (its braking avoided the "
-          "collision).\n"
-       << "- `collisions_avoided`: for act=brake runs, ego collisions of the same run with "
-          "act=warn (or none) minus its own.\n"
-       << "- `estimator_ms_*`: estimator time per estimate (steps table); `wall_s_mean`: wall "
-          "time per run.\n";
-    if (!md) throw CampaignError("cannot write '" + (result.dir / "summary.md").string() + "'");
-  }
+  const RunCounts counts = CountRuns(folder, in.metrics);
+  json manifest = Manifest(in, t, counts, o, result.files);
+  WriteSummaryMarkdown(result.dir / "summary.md", manifest["name"].get<std::string>(), counts, t,
+                       notes, o.grace_s);
   result.files.insert(result.files.begin(), "summary.md");
   manifest["notes"] = notes;
   {
     std::ofstream mf(result.dir / "report.json");
     mf << manifest.dump(2, ' ', false, json::error_handler_t::replace) << "\n";
   }
-
-  if (!o.plots) {
-    result.figures_missing = "--no-plots";
-    return result;
-  }
-  std::string why;
-  const std::string python = FindPython(o.python, why);
-  const fs::path script = FindScript(o.script);
-  if (python.empty()) {
-    result.figures_missing = why + "; tables are in " + (result.dir / "summary.md").string();
-  } else if (script.empty() || !fs::exists(script)) {
-    result.figures_missing = "figure script not found (" +
-                             (script.empty() ? std::string("none built in") : script.string()) +
-                             "; give --script or CRIT_CAMPAIGN_REPORT_SCRIPT)";
-  } else {
-    const auto [rc, last] = RunCaptured(Quote(python) + " " + Quote(script.string()) + " " +
-                                        Quote(result.dir.string()));
-    if (rc != 0) {
-      result.figures_missing = script.filename().string() + " failed: " + last;
-    } else {
-      result.figures = true;
-      for (const auto& e : fs::directory_iterator(result.dir)) {
-        const std::string ext = e.path().extension().string();
-        if (ext == ".png" || ext == ".svg" || ext == ".html")
-          result.files.push_back(e.path().filename().string());
-      }
-      std::sort(result.files.begin() + 1, result.files.end());
-    }
-  }
+  MakeFigures(o, result);
   return result;
 }
 

@@ -27,7 +27,7 @@ struct RunMetrics {
   long long warned_collisions{0};  ///< ego collisions preceded by a warning (anticipation known)
   std::vector<double> anticipation_s;
   long long warnings{0};
-  long long false_alarms{0};  ///< warnings with no collision of their ego until end + grace
+  long long false_alarms{0};  ///< warnings that nothing followed (view warning_outcomes)
   std::vector<std::string> false_alarm_egos;  ///< the ego of each of those warnings
   std::vector<std::string> collided_egos;     ///< egos with a collision (when egos are known)
 };
@@ -51,7 +51,9 @@ struct RunMetricsSet {
 
 /** Reads campaign_runs, plan_params and the run tables of a merged campaign database. A
  *  collision involves an ego when collisions.involves_ego says so or, for run files without
- *  that column, when its collider or victim was estimated as an ego in that run. */
+ *  that column, when its collider or victim was estimated as an ego in that run. False alarms
+ *  come from the TEMP view warning_outcomes (plugin/record/result_views.sql, grace_s as its
+ *  grace), which this creates on `db`; anticipation from collisions.anticipation_s. */
 RunMetricsSet LoadRunMetrics(SqliteDb& db, double grace_s);
 
 /** Ego IDs per run (distinct steps.ego), as the temporary table _run_egos(run_index, ego);

@@ -20,7 +20,7 @@ class Warning:
 @dataclass
 class CriticalEvent:
     """An ego's body overlapping another's, or its braking harder than its normal maximum
-    (the driver's critical_events table, plugin/critical_events.h)."""
+    (the driver's critical_events table, plugin/observe/critical_events.h)."""
     time_s: float
     ego: str
     kind: str  # overlap | hard-braking

@@ -10,8 +10,11 @@ evaluation).
 
 Anticipation: collision time minus the start of the episode that is open at the collision (or
 closed at most one step before it), as the driver's collisions.anticipation_s, but only when that
-episode starts after the scenario's quiet phase. A false positive: an episode that starts at or
-before the end of the quiet phase, or any episode in a collision-free scenario.
+episode starts after the scenario's quiet phase. One difference: an episode that starts at the
+collision's step counts here (0 s), not in the driver's rule (the view collision_anticipation of
+plugin/record/result_views.sql), which records a step's collisions before its warnings. A false
+positive: an episode that starts at or before the end of the quiet phase, or any episode in a
+collision-free scenario.
 """
 
 from dataclasses import dataclass
