@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "criticality/scene_io.h"
 
@@ -48,9 +49,21 @@ void RecordStage::Run(const Observation& obs, const SceneBatch& batch, const Act
     db_->AddCriticalEvent(t, e.ego, CriticalEventName(e.kind), e.other, e.value);
   }
   Scenes(t, batch);
-  Warnings(t, acted.warnings);
+  Egos(t, obs, batch);
+  Warnings(t, acted.warnings, batch);
   for (const ActionEvent& a : acted.actions) db_->AddAction(t, a);
   for (const EgoStep& s : acted.steps) db_->AddStep(t, s);
+}
+
+void RecordStage::Egos(double t, const Observation& obs, const SceneBatch& batch) {
+  for (const EgoEvent& e : obs.ego_events) {
+    if (e.kind == EgoEventKind::kArrive || e.kind == EgoEventKind::kVanish) recorded_.erase(e.ego);
+  }
+  for (size_t k = 0; k < batch.scenes.size(); ++k) {
+    const ObjectSnapshot& ego = batch.EgoOf(k);
+    if (!recorded_.insert(ego.id).second) continue;
+    db_->AddEgo(t, ego.id, ego.vehicle_class, ego.vehicle_type, ego.length_m, ego.width_m);
+  }
 }
 
 void RecordStage::Scenes(double t, const SceneBatch& batch) {
@@ -63,12 +76,14 @@ void RecordStage::Scenes(double t, const SceneBatch& batch) {
   }
 }
 
-void RecordStage::Warnings(double t, const std::vector<WarningEvent>& warnings) {
+void RecordStage::Warnings(double t, const std::vector<WarningEvent>& warnings,
+                           const SceneBatch& batch) {
   for (const WarningEvent& w : warnings) {
     switch (w.change) {
       case WarningChange::kOpen:
         open_episode_[w.ego] =
             db_->OpenWarning(w.ego, t, w.p_collision, w.x_m, w.y_m, w.edge, w.object);
+        StoreScene(t, open_episode_[w.ego], w.ego, batch);
         break;
       case WarningChange::kPeak:
         db_->UpdateWarningPeak(open_episode_.at(w.ego), w.p_collision);
@@ -77,6 +92,17 @@ void RecordStage::Warnings(double t, const std::vector<WarningEvent>& warnings) 
         CloseEpisode(w.ego, t);
         break;
     }
+  }
+}
+
+void RecordStage::StoreScene(double t, long long warning, const std::string& ego,
+                             const SceneBatch& batch) {
+  for (const Scene& scene : batch.scenes) {
+    if (scene.ego.id != ego) continue;
+    std::ostringstream text;
+    WriteScene(text, scene);
+    db_->AddWarningScene(warning, ego, t, text.str());
+    return;
   }
 }
 

@@ -2,6 +2,7 @@
 // Stage 5 of a step: everything the step produced goes to the results database (and, with
 // --record-scenes, each estimated scene to a file), committed once per step.
 #include <map>
+#include <set>
 #include <string>
 
 #include "plugin/act/act_outcome.h"
@@ -32,11 +33,16 @@ class RecordStage {
 
  private:
   void Scenes(double t, const SceneBatch& batch);
-  void Warnings(double t, const std::vector<WarningEvent>& warnings);
+  /** Each ego once, at its first estimate (again after it left and came back). */
+  void Egos(double t, const Observation& obs, const SceneBatch& batch);
+  void Warnings(double t, const std::vector<WarningEvent>& warnings, const SceneBatch& batch);
+  /** The scene of the warning's ego at the warning's start. */
+  void StoreScene(double t, long long warning, const std::string& ego, const SceneBatch& batch);
 
   RecordConfig config_;
   ResultsDb* db_;
   std::map<std::string, long long> open_episode_;  ///< ego -> warnings row
+  std::set<std::string> recorded_;                 ///< egos in the egos table (in the network)
 };
 
 }  // namespace criticality::plugin

@@ -47,6 +47,12 @@ CREATE TABLE step_times(
   run_id INTEGER NOT NULL REFERENCES runs(id), time_s REAL NOT NULL, estimates INTEGER NOT NULL,
   shortcut_estimates INTEGER NOT NULL, sumo_ms REAL, observe_ms REAL, scenes_ms REAL,
   estimate_ms REAL, act_ms REAL, record_ms REAL, rss_mb REAL);
+CREATE TABLE egos(
+  run_id INTEGER NOT NULL REFERENCES runs(id), ego TEXT NOT NULL, vehicle_class TEXT,
+  vehicle_type TEXT, length_m REAL, width_m REAL, first_s REAL NOT NULL);
+CREATE TABLE warning_scenes(
+  warning_id INTEGER NOT NULL REFERENCES warnings(id), run_id INTEGER NOT NULL REFERENCES runs(id),
+  ego TEXT NOT NULL, time_s REAL NOT NULL, scene TEXT NOT NULL);
 CREATE INDEX steps_by_ego ON steps(run_id, ego, time_s);
 )sql";
 
@@ -116,6 +122,8 @@ ResultsDb::ResultsDb(const std::string& path) : path_(path) {
         "UPDATE collisions SET anticipation_s = (SELECT anticipation_s FROM collision_anticipation "
         "WHERE collision_rowid = ?1) WHERE rowid = ?1");
     ego_event_ = Prepare("INSERT INTO ego_events VALUES(?,?,?,?,?)");
+    ego_ = Prepare("INSERT INTO egos VALUES(?,?,?,?,?,?,?)");
+    warning_scene_ = Prepare("INSERT INTO warning_scenes VALUES(?,?,?,?,?)");
     critical_event_ = Prepare("INSERT INTO critical_events VALUES(?,?,?,?,?,?)");
     step_time_ = Prepare("INSERT INTO step_times VALUES(?,?,?,?,?,?,?,?,?,?,?)");
     heartbeat_ = Prepare("UPDATE runs SET heartbeat_unix=? WHERE id=?");
@@ -129,11 +137,12 @@ ResultsDb::~ResultsDb() { Close(); }
 
 void ResultsDb::Close() {
   for (sqlite3_stmt* s : {step_, open_warning_, peak_warning_, close_warning_, action_, collision_,
-                          anticipation_, ego_event_, critical_event_, step_time_, heartbeat_}) {
+                          anticipation_, ego_event_, ego_, warning_scene_, critical_event_,
+                          step_time_, heartbeat_}) {
     sqlite3_finalize(s);
   }
   step_ = open_warning_ = peak_warning_ = close_warning_ = action_ = collision_ = anticipation_ =
-      ego_event_ = critical_event_ = step_time_ = heartbeat_ = nullptr;
+      ego_event_ = ego_ = warning_scene_ = critical_event_ = step_time_ = heartbeat_ = nullptr;
   // An open transaction is rolled back: only what Commit() or EndRun() committed stays.
   if (db_) sqlite3_close(db_);
   db_ = nullptr;
@@ -302,6 +311,28 @@ void ResultsDb::AddEgoEvent(double time_s, const std::string& ego, const std::st
   sqlite3_bind_text(ego_event_, 4, event.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(ego_event_, 5, detail.c_str(), -1, SQLITE_TRANSIENT);
   Step(ego_event_, "ego event");
+}
+
+void ResultsDb::AddEgo(double first_s, const std::string& ego, const std::string& vehicle_class,
+                       const std::string& vehicle_type, double length_m, double width_m) {
+  sqlite3_bind_int64(ego_, 1, run_id_);
+  sqlite3_bind_text(ego_, 2, ego.c_str(), -1, SQLITE_TRANSIENT);
+  BindOptionalText(ego_, 3, vehicle_class);
+  BindOptionalText(ego_, 4, vehicle_type);
+  BindOptionalDouble(ego_, 5, length_m);
+  BindOptionalDouble(ego_, 6, width_m);
+  sqlite3_bind_double(ego_, 7, first_s);
+  Step(ego_, "ego");
+}
+
+void ResultsDb::AddWarningScene(long long warning, const std::string& ego, double time_s,
+                                const std::string& scene) {
+  sqlite3_bind_int64(warning_scene_, 1, warning);
+  sqlite3_bind_int64(warning_scene_, 2, run_id_);
+  sqlite3_bind_text(warning_scene_, 3, ego.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_double(warning_scene_, 4, time_s);
+  sqlite3_bind_text(warning_scene_, 5, scene.c_str(), -1, SQLITE_TRANSIENT);
+  Step(warning_scene_, "warning scene");
 }
 
 void ResultsDb::AddCriticalEvent(double time_s, const std::string& ego, const std::string& kind,

@@ -61,6 +61,14 @@ class ResultsDb {
   void AddCollision(double time_s, const SumoCollision& c, bool involves_ego);
   void AddEgoEvent(double time_s, const std::string& ego, const std::string& event,
                    const std::string& detail);
+  /** An ego, once, when it is first estimated: its SUMO vClass and vType ("" stored as NULL)
+   *  and size, for breakdowns by class. */
+  void AddEgo(double first_s, const std::string& ego, const std::string& vehicle_class,
+              const std::string& vehicle_type, double length_m, double width_m);
+  /** The scene (a scene file's text, criticality/scene_io.h) of warning row `warning` at its
+   *  start, to show and replay the situation behind it. */
+  void AddWarningScene(long long warning, const std::string& ego, double time_s,
+                       const std::string& scene);
   /** An overlap or a hard braking of an ego (plugin/observe/critical_events.h); `other` "" is NULL. */
   void AddCriticalEvent(double time_s, const std::string& ego, const std::string& kind,
                         const std::string& other, double value);
@@ -97,6 +105,8 @@ class ResultsDb {
   sqlite3_stmt* collision_{nullptr};
   sqlite3_stmt* anticipation_{nullptr};
   sqlite3_stmt* ego_event_{nullptr};
+  sqlite3_stmt* ego_{nullptr};
+  sqlite3_stmt* warning_scene_{nullptr};
   sqlite3_stmt* step_time_{nullptr};
   sqlite3_stmt* heartbeat_{nullptr};
 };

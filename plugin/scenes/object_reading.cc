@@ -37,6 +37,7 @@ ObjectSnapshot ObjectReader::Person(const SumoObject& o) {
   ObjectSnapshot s;
   s.id = o.id;
   s.person = true;
+  s.vehicle_class = "pedestrian";
   s.state.x_m = o.x_m;
   s.state.y_m = o.y_m;
   s.state.yaw_rad = NavigationDegToYaw(o.angle_deg);
@@ -61,6 +62,8 @@ ObjectSnapshot ObjectReader::Person(const SumoObject& o) {
 ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   ObjectSnapshot s;
   s.id = o.id;
+  s.vehicle_class = o.vehicle_class;
+  s.vehicle_type = o.vehicle_type;
   s.length_m = o.length_m;
   s.width_m = o.width_m;
   if (o.height_m > 0.0) s.height_m = o.height_m;

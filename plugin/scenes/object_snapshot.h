@@ -35,6 +35,8 @@ struct ObjectSnapshot {
   /** A person's walk goes on along the footway (plugin/scenes/footway.h,
    *  Pedestrian::stays_on_footway). */
   bool stays_on_footway{false};
+  std::string vehicle_class;  ///< SUMO's vClass ("pedestrian" for persons)
+  std::string vehicle_type;   ///< SUMO's vType ID ("" for persons)
   std::string lane;  ///< SUMO lane ID ("" when not on a lane)
   std::string edge;  ///< SUMO edge ID of that lane
 };

@@ -26,6 +26,7 @@ struct SumoObject {
   double height_m{0.0};  ///< <= 0: unknown
   double decel_mps2{0.0};  ///< the type's normal maximum deceleration (SUMO's decel)
   std::string vehicle_class;  ///< SUMO's vClass ("passenger", "truck", ...)
+  std::string vehicle_type;   ///< its vType's ID
   double lane_position_m{0.0};  ///< of the front bumper, along the lane
   int lane_index{0};
   std::vector<std::string> route;  ///< the edges of its route

@@ -71,6 +71,32 @@ TEST(CoSimulation, EveryStepGoesThroughEveryStageIntoTheDatabase) {
             std::stod(Query(db, "select p_collision from steps order by time_s desc limit 1")));
 }
 
+// The same road with the standing car 25 m ahead: 1.3 s to impact at 15 m/s.
+std::unique_ptr<SumoWorld> CloseCall(const RunConfig& run) {
+  std::unique_ptr<SumoWorld> w = Road(run);
+  static_cast<FakeSumoWorld*>(w.get())->Find("standing")->x_m = 130.0;
+  return w;
+}
+
+TEST(CoSimulation, EachEgoIsRecordedWithItsClassAndEachWarningWithItsScene) {
+  const std::string db = Output("closecall.sqlite");
+  DriverOptions o = Options(db);
+  o.run.end_time_s = 1.0;
+  RunSummary summary;
+  ASSERT_EQ(RunDriver(o, &summary, CloseCall), kExitDone) << summary.error;
+  EXPECT_EQ(Query(db, "select ego || ' ' || vehicle_class || ' ' || first_s from egos"),
+            "ego passenger 0.0");
+  EXPECT_EQ(Query(db, "select count(*) from egos"), "1");  // once, not once per step
+  ASSERT_GE(std::stoi(Query(db, "select count(*) from warnings")), 1);
+  EXPECT_EQ(Query(db, "select count(*) from warnings w join warning_scenes s on s.warning_id = w.id "
+                      "and s.time_s = w.start_s and s.ego = w.ego"),
+            Query(db, "select count(*) from warnings"));
+  // The stored scene is the ego's scene file: it names the standing car.
+  const std::string scene = Query(db, "select scene from warning_scenes limit 1");
+  EXPECT_EQ(scene.rfind("criticality-scene", 0), 0u) << scene.substr(0, 40);
+  EXPECT_NE(scene.find("vehicle standing"), std::string::npos);
+}
+
 TEST(CoSimulation, ASumoThatCannotStartIsExitThreeAndLeavesNoFile) {
   const std::string db = Output("nosumo.sqlite");
   RunSummary summary;
