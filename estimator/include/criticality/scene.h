@@ -73,6 +73,45 @@ struct ObjectState {
   std::optional<double> route_end_m;
 };
 
+/** What kind of road user a vehicle is: its motion model and the range of its hypotheses
+ *  (Params::road_user_classes; estimator/ALGORITHM.md, "Road users by class"). */
+enum class RoadUser {
+  kCar,         ///< passenger cars, vans, taxis: the paper's classes (vehicle_class.h)
+  kMotorcycle,  ///< motorcycles and mopeds
+  kBicycle,     ///< bicycles (and e-scooters): low speed, low acceleration, narrow
+  kHeavy,       ///< trucks, trailers, buses, coaches: heavy, braking well below a car
+  kRail,        ///< trains, trams, light rail: bound to their track, no lateral hypotheses
+};
+
+/** What the traffic simulation knows of a vehicle's type (SUMO's vType). Each value that is set
+ *  bounds the vehicle's hypotheses; unset values take its road user class's
+ *  (Params::RoadUserLimits). */
+struct VehicleType {
+  RoadUser road_user{RoadUser::kCar};
+  std::optional<double> mass_kg;
+  std::optional<double> accel_mps2;            ///< the largest acceleration it drives with (> 0)
+  std::optional<double> decel_mps2;            ///< its normal largest deceleration (> 0)
+  std::optional<double> emergency_decel_mps2;  ///< the largest deceleration it can brake at (> 0)
+  std::optional<double> max_speed_mps;         ///< the type's top speed (> 0)
+};
+
+/** One more box of a long or articulated vehicle behind the ones before it (a train's or
+ *  tram's carriages, a truck's trailer), placed by the caller along the vehicle's way (SUMO
+ *  draws carriages along the lane). It moves with the vehicle's speed and acceleration along
+ *  its own lane; the vehicle and its carriages are one object whose hypotheses are the
+ *  vehicle's (estimator/ALGORITHM.md, "Long and articulated bodies"). */
+struct Carriage {
+  double x_m{0.0};  ///< centre (scene frame)
+  double y_m{0.0};
+  double yaw_rad{0.0};
+  double yaw_rate_radps{0.0};
+  double length_m{10.0};
+  double width_m{2.5};
+  /** Its lanes in ITS local frame (a carriage on a curved track follows its own piece of it);
+   *  none: a virtual lane along its heading. */
+  std::optional<LaneSet> lanes;
+};
+
 /** The vehicle whose criticality is estimated. Simulated with the two-track model. */
 struct Ego {
   std::string id{"ego"};
@@ -81,6 +120,9 @@ struct Ego {
   double width_m{1.8};
   std::optional<double> height_m;  ///< when known, the vehicle class uses 8 classes instead of 6
   LaneSet lanes;                   ///< in the ego's local frame
+  /** Its type: the class and limits of its hypotheses. The ego's body is one box (a long ego's
+   *  carriages are not modelled). */
+  VehicleType type;
 };
 
 /** A line ahead of a vehicle at which the traffic rules oblige it to stop, as the traffic
@@ -111,6 +153,10 @@ struct Vehicle {
   /** Where it must stop, when it must (estimator/ALGORITHM.md, "Stop obligations"): its
    *  hypotheses then include braking to stop before the line as the most probable one. */
   std::optional<StopLine> stop_line;
+  /** Its type: the class and limits of its hypotheses. */
+  VehicleType type;
+  /** The boxes of its body behind this one (length_m x width_m at state), front to back. */
+  std::vector<Carriage> carriages;
 };
 
 /** A pedestrian (kinematic model, no lanes). SUMO's default person is 0.215 m x 0.478 m; a
