@@ -44,4 +44,15 @@ CRIT_HD double NonReversingAccel(double v, double v_dot, double tau) {
   return (v + v_dot * tau < 0.0) ? -v / tau : v_dot;
 }
 
+/** Limits a positive longitudinal acceleration so that the speed does not rise above
+ *  top_speed in one step (a vehicle's top speed; one already faster keeps its speed). With
+ *  top_speed = +inf it returns v_dot unchanged. */
+CRIT_HD double TopSpeedAccel(double v, double v_dot, double tau, double top_speed) {
+  if (v_dot > 0.0 && v + v_dot * tau > top_speed) {
+    const double room = (top_speed - v) / tau;
+    return room > 0.0 ? room : 0.0;
+  }
+  return v_dot;
+}
+
 }  // namespace criticality::core

@@ -48,6 +48,10 @@ struct HypothesisSet {
    *  power_limited_drive; P / m = vehicle.power_per_mass_wpkg). */
   bool power_limited{false};
   double drive_traction{0.0};  ///< m/s^2
+  /** Vehicles: positive accelerations stop at this speed (its type's top speed, Params::
+   *  road_user_classes; a vehicle already faster keeps its speed unless it brakes). +inf: none
+   *  (the paper's). */
+  double top_speed{HUGE_VAL};
 
   /** Until this time the vehicle keeps following its reference path (the centre of its own
    *  lane, as a driver does without reacting to anything); its hypothesis' path takes over
@@ -57,6 +61,13 @@ struct HypothesisSet {
   /** The lateral controller adds the curvature of the path it tracks (feed-forward,
    *  Params::steer_curvature_feedforward): set for a vehicle already turning along its lane. */
   bool steer_feedforward{false};
+  /** Bound to its track (a rail vehicle, Params::road_user_classes): no steering and no
+   *  motion model across its way; its centre moves along reference_path, at track_offset from
+   *  it (the signed normal offset it starts at, positive to the path's left), by the distance
+   *  its speed covers, heading along the path. track_x0: where it starts, in the path's frame. */
+  bool on_track{false};
+  double track_x0{0.0};
+  double track_offset{0.0};
   /** The vehicle leaves the scene once its centre has travelled this far along its way
    *  (Params::route_end_leaves): its poses from then on lie far from everything (kGoneX), so
    *  they collide with nothing. +inf: it stays. */

@@ -62,6 +62,7 @@ struct SimulationState {
   double held_steer{0.0};
   int held_section{-2};
   double travelled{0.0};  ///< distance its centre has covered (for HypothesisSet::leave_distance)
+  double track_x{0.0};    ///< on a track: where it is along reference_path (the path's frame)
 };
 
 /** Where the poses of a vehicle that has left the scene go (HypothesisSet::leave_distance):
@@ -81,7 +82,34 @@ CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h,
   st.s.ax = h.accel0;
   st.s.ay = h.v0 * h.yaw_rate0;
   st.steer = InitialSteer(h, cfg.controller);
+  st.track_x = h.track_x0;
   return st;
+}
+
+/** One step of a vehicle bound to its track (HypothesisSet::on_track): its speed changes by
+ *  v_dot, its centre moves along the track by the distance that Euler step covers (v tau +
+ *  a_x tau^2 / 2, as EulerStep moves every other model), at the track's direction, keeping its
+ *  normal offset from the track; no sideslip. */
+CRIT_HD void TrackStep(const HypothesisSet& h, double v_dot, double tau, SimulationState* st) {
+  MotionState& s = st->s;
+  const Parabola& track = h.reference_path;
+  const double ds = s.v * tau + 0.5 * s.ax * tau * tau;
+  double m = track.Slope(st->track_x);
+  m = track.Slope(st->track_x + 0.5 * ds / std::sqrt(1.0 + m * m));  // midpoint slope
+  st->track_x += ds / std::sqrt(1.0 + m * m);
+  m = track.Slope(st->track_x);
+  const double q = std::sqrt(1.0 + m * m);
+  const double xr = st->track_x - h.track_offset * m / q;
+  const double yr = track.Eval(st->track_x) + h.track_offset / q;
+  const double yaw = std::atan(m) + track.rot;
+  s.x = track.cos_rot * xr - track.sin_rot * yr;
+  s.y = track.sin_rot * xr + track.cos_rot * yr;
+  s.yaw_rate = (yaw - s.yaw) / tau;
+  s.yaw = yaw;
+  s.beta = 0.0;
+  s.v = s.v + v_dot * tau;
+  s.ax = v_dot;
+  s.ay = s.v * s.yaw_rate;
 }
 
 /** Advances a VEHICLE hypothesis (profile, path) over steps [n_begin, n_end) from `st`,
@@ -105,59 +133,70 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
     while (k >= 0 && k < h.n_instants - 1 && k < kMaxSampleInstants - 1 && t >= h.instant_time[k])
       ++k;
     st->instant = k;
-    // Lateral reaction latency: until then the vehicle follows its reference path; its
-    // hypothesis' path section after it.
-    const bool latent = t < h.steer_latency;
-    const int lateral = SectionOfPath(h, path, st->instant);
-    const Parabola& section = latent ? h.reference_path : h.section[st->instant][lateral];
     // Trig of yaw and sideslip once per step; the course by the angle-sum identities.
     double cb = std::cos(s.beta), sb = std::sin(s.beta);
     const double cy = std::cos(s.yaw), sy = std::sin(s.yaw);
-    if (cfg.controller.feedback) {
-      st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau, cy * cb - sy * sb,
-                                  sy * cb + cy * sb,
-                                  h.steer_feedforward ? h.vehicle.lf_m + h.vehicle.lr_m : 0.0);
-    } else {  // the "controller off" ablation: one open-loop angle per section, held
-      const int key = latent ? -1 : st->instant * kMaxLateralSamples + lateral;
-      if (key != st->held_section) {
-        st->held_section = key;
-        st->held_steer =
-            latent ? InitialSteer(h, cfg.controller)
-                   : OpenLoopSteer(cfg.controller, section, s, h.vehicle.lf_m + h.vehicle.lr_m,
-                                   Max(h.instant_time[st->instant] - t, 0.5));
-      }
-      const double rate = cfg.controller.max_steer_rate_radps * tau;
-      st->steer = Clamp(st->held_steer, st->steer - rate, st->steer + rate);
-    }
-    double longitudinal = RampedValue(t, h.profile_start, target, h.latency, h.rate);
-    const bool kinematic = s.v < h.seam_speed;
-    StateDerivative d;
-    if (h.model == MotionModelKind::kTwoTrack) {
-      double factor;
-      if (h.force_profiles) {
-        factor = longitudinal;
-      } else {
-        if (longitudinal != cached_slip) {
-          cached_slip = longitudinal;
-          cached_factor = LongitudinalForceFactor(longitudinal);
-        }
-        factor = cached_factor;
-      }
-      if (h.power_limited && factor > 0.0) factor = Min(factor, DriveAccelLimit(h, s.v) / mu_g);
-      if (kinematic) {
-        d = KinematicSingleTrack(h.vehicle, st->steer, mu_g * factor, &s);
-      } else {
-        d = TwoTrackDerivative(h.vehicle, s, st->steer, factor, cb, sb);
-      }
+    if (h.on_track) {
+      double a = RampedValue(t, h.profile_start, target, h.latency, h.rate);
+      if (h.model == MotionModelKind::kTwoTrack)  // a force demand or a slip: in m/s^2
+        a = mu_g * (h.force_profiles ? a : LongitudinalForceFactor(a));
+      if (h.power_limited && a > 0.0) a = Min(a, DriveAccelLimit(h, s.v));
+      if (h.vehicle.friction_limited) a = Clamp(a, -mu_g, mu_g);
+      a = NonReversingAccel(s.v, TopSpeedAccel(s.v, a, tau, h.top_speed), tau);
+      st->steer = 0.0;
+      TrackStep(h, a, tau, st);
     } else {
-      if (h.power_limited && longitudinal > 0.0)
-        longitudinal = Min(longitudinal, DriveAccelLimit(h, s.v));
-      d = kinematic ? KinematicSingleTrack(h.vehicle, st->steer, longitudinal, &s)
-                    : OneTrackDerivative(h.vehicle, s, st->steer, longitudinal);
+      // Lateral reaction latency: until then the vehicle follows its reference path; its
+      // hypothesis' path section after it.
+      const bool latent = t < h.steer_latency;
+      const int lateral = SectionOfPath(h, path, st->instant);
+      const Parabola& section = latent ? h.reference_path : h.section[st->instant][lateral];
+      if (cfg.controller.feedback) {
+        st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau, cy * cb - sy * sb,
+                                    sy * cb + cy * sb,
+                                    h.steer_feedforward ? h.vehicle.lf_m + h.vehicle.lr_m : 0.0);
+      } else {  // the "controller off" ablation: one open-loop angle per section, held
+        const int key = latent ? -1 : st->instant * kMaxLateralSamples + lateral;
+        if (key != st->held_section) {
+          st->held_section = key;
+          st->held_steer =
+              latent ? InitialSteer(h, cfg.controller)
+                     : OpenLoopSteer(cfg.controller, section, s, h.vehicle.lf_m + h.vehicle.lr_m,
+                                     Max(h.instant_time[st->instant] - t, 0.5));
+        }
+        const double rate = cfg.controller.max_steer_rate_radps * tau;
+        st->steer = Clamp(st->held_steer, st->steer - rate, st->steer + rate);
+      }
+      double longitudinal = RampedValue(t, h.profile_start, target, h.latency, h.rate);
+      const bool kinematic = s.v < h.seam_speed;
+      StateDerivative d;
+      if (h.model == MotionModelKind::kTwoTrack) {
+        double factor;
+        if (h.force_profiles) {
+          factor = longitudinal;
+        } else {
+          if (longitudinal != cached_slip) {
+            cached_slip = longitudinal;
+            cached_factor = LongitudinalForceFactor(longitudinal);
+          }
+          factor = cached_factor;
+        }
+        if (h.power_limited && factor > 0.0) factor = Min(factor, DriveAccelLimit(h, s.v) / mu_g);
+        if (kinematic) {
+          d = KinematicSingleTrack(h.vehicle, st->steer, mu_g * factor, &s);
+        } else {
+          d = TwoTrackDerivative(h.vehicle, s, st->steer, factor, cb, sb);
+        }
+      } else {
+        if (h.power_limited && longitudinal > 0.0)
+          longitudinal = Min(longitudinal, DriveAccelLimit(h, s.v));
+        d = kinematic ? KinematicSingleTrack(h.vehicle, st->steer, longitudinal, &s)
+                      : OneTrackDerivative(h.vehicle, s, st->steer, longitudinal);
+      }
+      if (kinematic) cb = std::cos(s.beta), sb = std::sin(s.beta);  // the kinematic model set beta
+      d.v_dot = NonReversingAccel(s.v, TopSpeedAccel(s.v, d.v_dot, tau, h.top_speed), tau);
+      EulerStep(d, tau, &s, cb, sb, cy, sy);
     }
-    if (kinematic) cb = std::cos(s.beta), sb = std::sin(s.beta);  // the kinematic model set beta
-    d.v_dot = NonReversingAccel(s.v, d.v_dot, tau);
-    EulerStep(d, tau, &s, cb, sb, cy, sy);
     if (s.v < 0.0) s.v = 0.0;  // rounding guard
     st->travelled += s.v * tau;
     // Local frame -> scene frame (LocalToWorld with the rotation hoisted out of the loop).

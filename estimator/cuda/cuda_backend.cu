@@ -6,7 +6,9 @@
 // (BuildProblem). Buffers are plain cudaMalloc, grown when needed and reused across calls. Poses
 // are stored step-major ([n * count + t]) so that the threads of a warp read neighbouring CO poses.
 // Sums over ego hypotheses run in ego order on the device, like the CPU's, and every CUDA failure
-// becomes a CudaError naming the step.
+// becomes a CudaError naming the step. A problem with carriages (long bodies) has every set
+// simulated and checked on the device, and its pair matrix folded and its risk assessed on the
+// host (internal::AssessBodies), beside the batch's other problems.
 #include <cuda_runtime.h>
 
 #include <algorithm>
@@ -58,8 +60,14 @@ class DeviceArray {
     return ptr_;
   }
   void Download(std::vector<T>* host, size_t n, const char* what) const {
+    Download(host, 0, n, what);
+  }
+  /** Elements [first, first + n). */
+  void Download(std::vector<T>* host, size_t first, size_t n, const char* what) const {
     host->resize(n);
-    if (n) Check(cudaMemcpy(host->data(), ptr_, n * sizeof(T), cudaMemcpyDeviceToHost), what);
+    if (n) {
+      Check(cudaMemcpy(host->data(), ptr_ + first, n * sizeof(T), cudaMemcpyDeviceToHost), what);
+    }
   }
   T* get() const { return ptr_; }
 
@@ -167,6 +175,23 @@ class CudaBackend final : public EstimatorBackend {
     for (size_t p = 0; p < problems.size(); ++p) {
       const internal::Problem& pb = *problems[p];
       Result& r = (*results)[p];
+      if (pb.HasCarriages()) {
+        // Long bodies: the device's risk knows every carriage as an object of its own, so
+        // this problem's pair matrix is folded into its vehicles' columns and assessed on the
+        // host, as every other backend does (estimator/ALGORITHM.md, "Long and articulated
+        // bodies").
+        std::vector<std::int16_t> mine;
+        if (keep_pair_matrix) {
+          mine.assign(first.begin() + h.pair_base[p], first.begin() + h.pair_base[p + 1]);
+        } else {
+          d_first_.Download(&mine, static_cast<size_t>(h.pair_base[p]),
+                            static_cast<size_t>(h.pair_base[p + 1] - h.pair_base[p]),
+                            "copy pair matrix of a problem with carriages");
+        }
+        internal::AssessBodies(pb, params, &mine, 1, &r);
+        if (keep_pair_matrix) r.first_collision_step = std::move(mine);
+        continue;
+      }
       const int steps = h.steps, n_obj = static_cast<int>(pb.cos.size());
       const double* s = sums.data() + h.out_base[p];
       r.first_collision_pmf.assign(s, s + steps);

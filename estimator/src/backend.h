@@ -1,7 +1,9 @@
 #pragma once
 // What a backend does: trajectory generation, collision recognition and, by default on the
 // host, risk assessment (Run). Street data processing and hypothesis set-up are shared host
-// code (BuildProblem). The CUDA backend overrides Run to keep all three on the device.
+// code (BuildProblem). The CUDA backend overrides Run to keep all three on the device
+// (problems with carriages fold their pair matrix and assess their risk on the host,
+// AssessBodies).
 #include <cstdint>
 #include <vector>
 
@@ -25,7 +27,8 @@ class EstimatorBackend {
   virtual const internal::TrajectoryStore& EgoTrajectories() const = 0;
   virtual const internal::TrajectoryStore& CoTrajectories() const = 0;
   /** Trajectories, collisions and risk of `problem` into `result`, with module times.
-   *  Default: GenerateTrajectories, RecognizeCollisions, then the host risk assessment. */
+   *  Default: GenerateTrajectories, RecognizeCollisions (every set, carriages included), then
+   *  the host risk assessment (AssessBodies: carriages folded into their vehicles first). */
   virtual void Run(const internal::Problem& problem, const Params& params, bool keep_pair_matrix,
                    Result* result);
   /** Run on every problem of a batch. Default: one after the other; the CUDA backend runs the

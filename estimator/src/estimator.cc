@@ -46,7 +46,7 @@ struct ReachShortcut {
   // hypothesis is an escape route candidate (tests/estimator/reach_filter_test.cc compares
   // every field with the full estimate).
   static void Answer(const internal::Problem& kept, const Params& params, Result* result) {
-    const int n_ego = kept.EgoTrajectories();
+    const int n_ego = kept.EgoTrajectories();  // no object left, so no carriage either
     result->p_collision = 0.0;
     result->first_collision_pmf.assign(kept.Steps(), 0.0);
     result->objects = kept.objects;
@@ -142,7 +142,7 @@ void EstimatorBackend::Run(const internal::Problem& problem, const Params& param
   RecognizeCollisions(problem, &first_step);
   result->times.collision_ms = MsSince(t);
   t = std::chrono::steady_clock::now();
-  internal::AssessRisk(problem, params, first_step.data(), Threads(), result);
+  internal::AssessBodies(problem, params, &first_step, Threads(), result);
   result->times.risk_ms = MsSince(t);
   if (keep_pair_matrix) result->first_collision_step = std::move(first_step);
 }
@@ -201,7 +201,7 @@ Result Estimator::Estimate(const Scene& scene) {
   }
   shortcut.Restore(built, &result);
   result.answered_by_reach_shortcut = shortcut.none_left;
-  result.counts = problem.counts;
+  result.counts = internal::ResultCounts(problem);
   result.times.total_ms = MsSince(t0);
   return result;
 }
@@ -246,7 +246,7 @@ std::vector<Result> Estimator::EstimateBatch(const std::vector<Scene>& scenes) {
   }
   const double total_ms = MsSince(t0);
   for (size_t k = 0; k < results.size(); ++k) {
-    results[k].counts = problems[k].counts;
+    results[k].counts = internal::ResultCounts(problems[k]);
     if (results.size() > 1) {  // a batch shares its time: each result gets the mean
       results[k].times.street_ms = street_ms / results.size();
       results[k].times.total_ms = total_ms / results.size();

@@ -1,5 +1,6 @@
 #include "src/problem.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -28,8 +29,13 @@ struct LateralSample {
 // Lateral samples right to left: neighbour_lane_samples across the right lane, own_lane_samples
 // across the own lane, neighbour_lane_samples across the left lane, each equally distributed
 // over its lane's width (fractions i / (n + 1)).
-std::vector<LateralSample> LateralSamples(const FittedLanes& lanes, const Params& p) {
+std::vector<LateralSample> LateralSamples(const FittedLanes& lanes, const Params& p,
+                                          bool centre_only) {
   std::vector<LateralSample> out;
+  if (centre_only) {  // bound to its track: its own lane's centre
+    out.push_back({lanes.own->Centre(), lanes.own->counter_traffic, 0});
+    return out;
+  }
   auto add = [&](const std::optional<FittedLane>& lane, int n, int index) {
     if (!lane) return;
     for (int i = 1; i <= n; ++i) {
@@ -57,13 +63,124 @@ double AccelScore(const Params& p, double deviation) {
   return core::GaussianScore(z * z);
 }
 
+// The class limits of a vehicle's type (Params::road_user_classes); nullptr for a car (the
+// paper's range, vehicle_class.h) and with the classes off.
+const RoadUserLimits* ClassOf(const VehicleType& t, const Params& p) {
+  return p.road_user_classes ? p.LimitsOf(t.road_user) : nullptr;
+}
+
+// Whether its class is simulated with the kinematic single-track model at every speed.
+bool KinematicClass(const VehicleType& t, const Params& p) {
+  const RoadUserLimits* c = ClassOf(t, p);
+  return c && c->kinematic;
+}
+
+// Rail vehicles are bound to their track: one path, their own lane's centre, from t = 0.
+bool TrackBound(const VehicleType& t, const Params& p) {
+  return p.road_user_classes && t.road_user == RoadUser::kRail;
+}
+
+// The range of a vehicle's longitudinal hypotheses (Params::road_user_classes): braking down
+// to its emergency deceleration (the VehicleType's; else the larger of its decel and its
+// class's, SUMO's rule), positive profiles up to its acceleration (the VehicleType's, else its
+// class's) and never above its top speed. A car (the paper's classes) keeps the paper's profile
+// grid (vehicle_accel_min..max_mps2, positive profiles bounded by the power limit); its type's
+// emergency deceleration only floors the hardest braking samples (`floor`) and its top speed
+// bounds it: moving every sample with SUMO's default 9 m/s^2 instead of 9.7 shifted the whole
+// grid and split a designed scenario's warning (cut_in). `typed`: the range comes from a class
+// or a VehicleType value (a kCar without values keeps every step of the paper's range as
+// before, bit for bit).
+struct ProfileRange {
+  double lo{-9.7};
+  double hi{9.7};
+  double floor{-9.7};  ///< no profile brakes harder (lo, or a car's type's emergency decel)
+  double top_speed{HUGE_VAL};
+  bool typed{false};
+  double Clamp(double a) const { return core::Clamp(a, floor, hi); }
+};
+
+ProfileRange RangeOf(const VehicleType& t, const Params& p) {
+  ProfileRange r;
+  r.lo = p.vehicle_accel_min_mps2;
+  r.hi = p.vehicle_accel_max_mps2;
+  if (!p.road_user_classes) return r;
+  const RoadUserLimits* c = p.LimitsOf(t.road_user);
+  const double class_emergency = c ? c->emergency_decel_mps2 : -p.vehicle_accel_min_mps2;
+  double emergency = class_emergency;
+  if (t.emergency_decel_mps2) {
+    emergency = *t.emergency_decel_mps2;
+  } else if (t.decel_mps2) {
+    emergency = std::fmax(*t.decel_mps2, class_emergency);
+  }
+  if (c) {
+    r.lo = -emergency;
+    r.hi = t.accel_mps2 ? *t.accel_mps2 : c->accel_mps2;
+  }
+  r.floor = c ? r.lo : std::fmax(r.lo, -emergency);
+  if (t.max_speed_mps) {
+    r.top_speed = *t.max_speed_mps;
+  } else if (c) {
+    r.top_speed = c->max_speed_mps;
+  }
+  r.typed = c || t.decel_mps2 || t.emergency_decel_mps2 || t.max_speed_mps;
+  return r;
+}
+
+// The model parameters of a box of `type`: a car's from its dimensions (vehicle_class.h), its
+// VehicleType's mass replacing the class's (yaw inertia and cornering stiffness scaled with
+// it); another class's from its RoadUserLimits: mass (the VehicleType's when given), yaw
+// inertia yaw_inertia_box_share of a uniform box's, wheelbase and cornering stiffness.
 core::VehicleParams VehicleModelParams(double length, double width, std::optional<double> height,
-                                       const Params& p) {
-  core::VehicleParams vp = VehicleParamsFor(ClassifyVehicle(length, width, height), length, width);
+                                       const VehicleType& type, const Params& p) {
+  core::VehicleParams vp;
+  if (const RoadUserLimits* c = ClassOf(type, p)) {
+    const double m = type.mass_kg ? *type.mass_kg : c->mass_kg;
+    vp.mass_kg = m;
+    vp.yaw_inertia_kgm2 = p.yaw_inertia_box_share * m * (length * length + width * width) / 12.0;
+    vp.power_per_mass_wpkg = c->power_per_mass_wpkg;
+    const double wheelbase =
+        std::clamp(c->wheelbase_share * length, c->wheelbase_min_m, c->wheelbase_max_m);
+    vp.lf_m = 0.45 * wheelbase;
+    vp.lr_m = 0.55 * wheelbase;
+    vp.cf_npr = c->cornering_stiffness_per_kg * m;
+    vp.cr_npr = c->cornering_stiffness_per_kg * m;
+    vp.track_m = std::clamp(width - 0.25, 0.5, 2.5);
+  } else {
+    vp = VehicleParamsFor(ClassifyVehicle(length, width, height), length, width);
+    if (p.road_user_classes && type.mass_kg) {
+      const double k = *type.mass_kg / vp.mass_kg;
+      vp.mass_kg = *type.mass_kg;
+      vp.yaw_inertia_kgm2 *= k;
+      vp.cf_npr *= k;
+      vp.cr_npr *= k;
+    }
+  }
   vp.friction = p.friction;
   vp.kinematic_below_mps = p.kinematic_below_mps;
   vp.friction_limited = p.friction_limited_lateral;
   return vp;
+}
+
+// The speed below which a vehicle of `type` is simulated with the kinematic model: every speed
+// for the kinematic classes (bicycles, rail), else SeamSpeed.
+double SeamSpeedOf(const core::VehicleParams& vp, const VehicleType& type, const Params& p) {
+  if (KinematicClass(type, p)) return HUGE_VAL;
+  return core::SeamSpeed(vp, p.step_s, p.euler_stability_factor);
+}
+
+// Binds a vehicle (or the ego) to its track (a rail vehicle, after SetPaths gave it its one
+// path): it moves along its reference path (its own lane's centre) at the normal offset it
+// starts at, from the foot of its centre on the path (one Newton step from straight across).
+void PutOnTrack(core::HypothesisSet* h) {
+  const core::Parabola& c = h->reference_path;
+  double xr, yr;
+  c.ToFrame(0.0, 0.0, &xr, &yr);
+  const double m = c.Slope(xr);
+  const double foot = xr + (yr - c.Eval(xr)) * m / (1.0 + m * m);
+  const double mf = c.Slope(foot);
+  h->on_track = true;
+  h->track_x0 = foot;
+  h->track_offset = (-(xr - foot) * mf + (yr - c.Eval(foot))) / std::sqrt(1.0 + mf * mf);
 }
 
 // Pose and motion state; for vehicles after h->vehicle is set.
@@ -148,8 +265,9 @@ bool TurningAlongLane(const core::HypothesisSet& h, const core::Parabola& centre
 // ego's lane samples (-1, 0, +1) when asked.
 std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool combine,
                                 double a_ref, core::HypothesisSet* h,
-                                std::vector<int>* sample_lanes = nullptr) {
-  const std::vector<LateralSample> samples = LateralSamples(lanes, p);
+                                std::vector<int>* sample_lanes = nullptr,
+                                bool centre_only = false) {
+  const std::vector<LateralSample> samples = LateralSamples(lanes, p, centre_only);
   const int n_lat = static_cast<int>(samples.size());
   const int n_inst = static_cast<int>(p.path_sample_times_s.size());
   h->n_instants = n_inst;
@@ -274,7 +392,7 @@ std::vector<double> ProfileDistances(const core::HypothesisSet& h, double target
     } else {
       double a = scale * core::RampedValue(t, h.profile_start, target, h.latency, h.rate);
       if (h.power_limited && a > 0.0) a = core::Min(a, core::DriveAccelLimit(h, v));
-      a = core::NonReversingAccel(v, a, tau);
+      a = core::NonReversingAccel(v, core::TopSpeedAccel(v, a, tau, h.top_speed), tau);
       x += v * tau + 0.5 * a * tau * tau;
       v = core::Max(0.0, v + a * tau);
     }
@@ -345,7 +463,7 @@ double StopDistance(const core::HypothesisSet& h, double target, const Params& p
   for (double t = 0.0; t < kLimitS && v > 0.0; t += tau) {
     double a = core::RampedValue(t, h.profile_start, target, h.latency, h.rate);
     if (h.power_limited && a > 0.0) a = core::Min(a, core::DriveAccelLimit(h, v));
-    a = core::NonReversingAccel(v, a, tau);
+    a = core::NonReversingAccel(v, core::TopSpeedAccel(v, a, tau, h.top_speed), tau);
     x += v * tau + 0.5 * a * tau * tau;
     v = core::Max(0.0, v + a * tau);
   }
@@ -360,12 +478,12 @@ double StopDistance(const core::HypothesisSet& h, double target, const Params& p
 // the line (it complies as it is), when even the minimum overshoots the line (it cannot comply)
 // or when no slot is free.
 int StopProfile(const core::HypothesisSet& h, const StopObligation& stop, int reference,
-                const Params& p, std::vector<double>* a) {
+                double lo_accel, const Params& p, std::vector<double>* a) {
   const int n = static_cast<int>(a->size());
   // Already stopping before the line at its current acceleration: that complies, and stays the
   // reference (nothing to add).
   if (reference >= 0 && StopDistance(h, (*a)[reference], p) <= stop.distance_m) return -1;
-  double lo = p.vehicle_accel_min_mps2, hi = 0.0;
+  double lo = lo_accel, hi = 0.0;
   if (StopDistance(h, lo, p) > stop.distance_m) return -1;
   for (int i = 0; i < 60 && hi - lo > 1e-4; ++i) {
     const double mid = 0.5 * (lo + hi);
@@ -384,10 +502,12 @@ int StopProfile(const core::HypothesisSet& h, const StopObligation& stop, int re
 // The longitudinal part of a vehicle's hypothesis set (the ego: two-track, driven by slip or
 // by tyre force demand; others: one-track accelerations) and its profile scores. `accel` gets
 // each profile's target acceleration and `slip` its slip (the ego's, for reports).
-// `a_ref` is the reference acceleration (ReferenceAccel). With `stop` (a credible stop
+// `a_ref` is the reference acceleration (ReferenceAccel), `r` the range of its type (RangeOf:
+// profiles, scores' ranges, the stopping profile and the top speed). With `stop` (a credible stop
 // obligation, other vehicles only), one profile becomes the stopping profile and its index is
 // written to `stop_profile` (-1 when none fits: see StopProfile).
-std::vector<ProfileScore> SetVehicleProfiles(const Params& p, double a_ref, core::HypothesisSet* h,
+std::vector<ProfileScore> SetVehicleProfiles(const Params& p, double a_ref, const ProfileRange& r,
+                                             core::HypothesisSet* h,
                                              std::vector<double>* accel = nullptr,
                                              std::vector<double>* slip = nullptr,
                                              const StopObligation* stop = nullptr,
@@ -396,25 +516,34 @@ std::vector<ProfileScore> SetVehicleProfiles(const Params& p, double a_ref, core
   h->latency = p.latency_s;
   h->steer_latency = p.steer_latency_s;
   h->power_limited = p.power_limited_drive;
+  h->top_speed = r.top_speed;
   const double mu_g = h->vehicle.friction * core::kGravity;
   h->drive_traction = p.drive_traction_share * mu_g;
   const bool ego = h->model == core::MotionModelKind::kTwoTrack;
   std::vector<ProfileScore> scores(p.profiles);
   std::vector<double> a;
-  int reference =
-      ProfileAccelerations(p.profiles, p.vehicle_accel_min_mps2, p.vehicle_accel_max_mps2, a_ref,
-                           p.profiles_include_current_accel, false, &a);
-  const double current = core::Clamp(a_ref, p.vehicle_accel_min_mps2, p.vehicle_accel_max_mps2);
+  int reference = ProfileAccelerations(p.profiles, r.lo, r.hi, a_ref,
+                                       p.profiles_include_current_accel, false, &a);
+  for (double& x : a) x = std::fmax(x, r.floor);
+  const double current = r.Clamp(a_ref);
+  // A typed vehicle's profiles start from its current acceleration within its range, so that
+  // not even the latency before a profile acts leaves the range.
+  const double start = r.typed ? r.Clamp(h->accel0) : h->accel0;
   double scale = 1.0;  // profile value -> m/s^2
   if (ego && !p.ego_profiles_in_accel) {
     // Paper: longitudinal slip, equally spaced as the accelerations are; no reference profile.
+    // A typed ego's slips stay within what its range's accelerations need.
     reference = -1;
+    double slip_lo = p.ego_slip_min, slip_hi = p.ego_slip_max;
+    if (r.typed) {
+      slip_lo = std::fmax(slip_lo, core::SlipFromAccel(h->vehicle, r.lo));
+      slip_hi = std::fmin(slip_hi, core::SlipFromAccel(h->vehicle, r.hi));
+    }
     std::vector<double> s_targets;
-    ProfileAccelerations(p.profiles, p.ego_slip_min, p.ego_slip_max, 0.0, false, false, &s_targets);
-    h->profile_start = core::SlipFromAccel(h->vehicle, h->accel0);
+    ProfileAccelerations(p.profiles, slip_lo, slip_hi, 0.0, false, false, &s_targets);
+    h->profile_start = core::SlipFromAccel(h->vehicle, start);
     h->rate = p.ego_slip_max * p.jerk_mps3 / p.vehicle_accel_max_mps2;
-    const double range =
-        p.accel_score_scale * std::fmax(std::fabs(p.ego_slip_min), std::fabs(p.ego_slip_max));
+    const double range = p.accel_score_scale * std::fmax(std::fabs(slip_lo), std::fabs(slip_hi));
     for (int k = 0; k < p.profiles; ++k) {
       h->profile_target[k] = s_targets[k];
       a[k] = core::AccelFromSlip(h->vehicle, s_targets[k]);
@@ -430,20 +559,20 @@ std::vector<ProfileScore> SetVehicleProfiles(const Params& p, double a_ref, core
       // Tyre force demand a / (mu g) on the four wheels, ramped in acceleration.
       h->force_profiles = true;
       scale = mu_g;
-      h->profile_start = core::Clamp(h->accel0 / mu_g, -1.0, 1.0);
+      h->profile_start = core::Clamp(start / mu_g, -1.0, 1.0);
       h->rate = p.jerk_mps3 / mu_g;
+      const double a_ref_target = r.typed ? current : a_ref;
       for (int k = 0; k < p.profiles; ++k) {
-        h->profile_target[k] = k == reference ? core::Clamp(a_ref / mu_g, -1.0, 1.0)
+        h->profile_target[k] = k == reference ? core::Clamp(a_ref_target / mu_g, -1.0, 1.0)
                                               : core::Clamp(a[k] / mu_g, -1.0, 1.0);
       }
     } else {
-      h->profile_start = h->accel0;
+      h->profile_start = start;
       h->rate = p.jerk_mps3;
-      if (stop) *stop_profile = StopProfile(*h, *stop, reference, p, &a);
+      if (stop) *stop_profile = StopProfile(*h, *stop, reference, r.floor, p, &a);
       for (int k = 0; k < p.profiles; ++k) h->profile_target[k] = a[k];
     }
-    const double range = p.accel_score_scale * std::fmax(std::fabs(p.vehicle_accel_min_mps2),
-                                                         std::fabs(p.vehicle_accel_max_mps2));
+    const double range = p.accel_score_scale * std::fmax(std::fabs(r.lo), std::fabs(r.hi));
     for (int k = 0; k < p.profiles; ++k) {
       if (Naturalistic(p)) {
         scores[k].n_acc = AccelScore(p, a[k] - current);
@@ -486,6 +615,49 @@ bool InsideLanes(const FittedLanes& lanes, double x, double y) {
 
 }  // namespace
 
+std::vector<std::int16_t> FoldCarriages(const Problem& pb,
+                                        const std::vector<std::int16_t>& first_step) {
+  const int n_ego = pb.EgoTrajectories(), n_all = pb.CoTrajectories();
+  const int n_obj = pb.ObjectTrajectories();
+  std::vector<std::int16_t> folded(static_cast<size_t>(n_ego) * n_obj);
+  for (int i = 0; i < n_ego; ++i) {
+    const std::int16_t* row = first_step.data() + static_cast<size_t>(i) * n_all;
+    std::int16_t* out = folded.data() + static_cast<size_t>(i) * n_obj;
+    std::copy(row, row + n_obj, out);
+    for (size_t s = pb.objects.size(); s < pb.cos.size(); ++s) {
+      const int o = pb.carriage_object[s - pb.objects.size()];
+      const int first = pb.co_offset[o], count = pb.co_offset[o + 1] - first;
+      for (int t = 0; t < count; ++t) {
+        const std::int16_t hit =
+            row[pb.co_offset[s] + pb.CarriageTrajectory(static_cast<int>(s), t)];
+        std::int16_t& f = out[first + t];
+        if (hit > 0 && (f == 0 || hit < f)) f = hit;
+      }
+    }
+  }
+  return folded;
+}
+
+Problem ObjectProblem(const Problem& pb) {
+  Problem out = pb;
+  const size_t n_sets = pb.objects.size();
+  const int n_obj = pb.ObjectTrajectories();
+  out.cos.resize(n_sets);
+  out.co_offset.resize(n_sets + 1);
+  out.co_object_of.resize(n_obj);
+  out.co_probability.resize(n_obj);
+  out.carriage_object.clear();
+  out.counts.co_trajectories = n_obj;
+  return out;
+}
+
+WorkCounts ResultCounts(const Problem& pb) {
+  WorkCounts c = pb.counts;
+  c.co_trajectories = pb.ObjectTrajectories();
+  c.carriage_trajectories = pb.CoTrajectories() - c.co_trajectories;
+  return c;
+}
+
 std::uint64_t WorkloadBytes(std::uint64_t ego_trajectories, std::uint64_t co_trajectories,
                             std::uint64_t steps, std::uint64_t objects) {
   const std::uint64_t poses = (ego_trajectories + co_trajectories) * steps;
@@ -513,16 +685,21 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   {
     core::HypothesisSet& h = pb.ego;
     h.model = core::MotionModelKind::kTwoTrack;
+    // Its type's limits and model (Params::road_user_classes); its body stays one box.
+    const VehicleType& type = scene.ego.type;
     h.vehicle =
-        VehicleModelParams(scene.ego.length_m, scene.ego.width_m, scene.ego.height_m, params);
+        VehicleModelParams(scene.ego.length_m, scene.ego.width_m, scene.ego.height_m, type, params);
     SetPose(scene.ego.state, scene.ego.length_m, scene.ego.width_m, &h);
     SetRouteEnd(scene.ego.state, params, &h);
-    h.seam_speed = core::SeamSpeed(h.vehicle, params.step_s, params.euler_stability_factor);
+    h.seam_speed = SeamSpeedOf(h.vehicle, type, params);
     const double a_ref = ReferenceAccel(scene.ego.state, ego_fitted.own->Centre(), params);
-    const std::vector<ProfileScore> profiles =
-        SetVehicleProfiles(params, a_ref, &h, &pb.ego_profile_accel, &pb.ego_profile_slip);
+    const std::vector<ProfileScore> profiles = SetVehicleProfiles(
+        params, a_ref, RangeOf(type, params), &h, &pb.ego_profile_accel, &pb.ego_profile_slip);
+    const bool track = TrackBound(type, params);
+    if (track) h.steer_latency = 0.0;
     const std::vector<PathScore> paths =
-        SetPaths(ego_fitted, params, /*combine=*/true, a_ref, &h, &pb.ego_sample_lane);
+        SetPaths(ego_fitted, params, /*combine=*/true, a_ref, &h, &pb.ego_sample_lane, track);
+    if (track) PutOnTrack(&h);
     AppendProbabilities(profiles, paths, params, &pb.ego_probability);
     pb.ego_lane_centre = ego_fitted.own->Centre();
     for (size_t i = 1; i < pb.ego_probability.size(); ++i) {
@@ -532,43 +709,56 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   }
 
   const core::Pose2 X_WE{scene.ego.state.x_m, scene.ego.state.y_m, scene.ego.state.yaw_rad};
-  int offset = 0;
-  pb.co_offset.push_back(0);
-  for (size_t i = 0; i < scene.vehicles.size(); ++i) {
-    const Vehicle& v = scene.vehicles[i];
-    const std::string where = "scene.vehicles[" + std::to_string(i) + "]";
-    core::HypothesisSet h;
-    h.model = core::MotionModelKind::kOneTrack;
-    h.vehicle = VehicleModelParams(v.length_m, v.width_m, v.height_m, params);
-    SetPose(v.state, v.length_m, v.width_m, &h);
-    SetRouteEnd(v.state, params, &h);
-    h.seam_speed = core::SeamSpeed(h.vehicle, params.step_s, params.euler_stability_factor);
-    ObjectResult info;
-    info.id = v.id;
-    info.kind = ObjectKind::kVehicle;
-    info.lane = static_cast<int>(LaneIndex::kNone);
-    // Associate by centre of gravity with the ego's lanes, if it drives along them (within
-    // 45 deg either way). Without lanes of its own it then uses the ego's lanes seen from its
-    // frame; crossing traffic without lanes of its own gets a virtual lane.
+  // The lanes a vehicle (or a carriage) at `s` uses: associated by its centre of gravity with
+  // the ego's lanes, if it drives along them (within 45 deg either way), it uses, without lanes
+  // of its own, the ego's lanes seen from its frame; crossing traffic without lanes of its own
+  // gets a virtual lane.
+  auto lanes_of = [&](const ObjectState& s, const std::optional<LaneSet>& own,
+                      LaneIndex* associated) {
     core::Pose2 X_EV;
-    core::WorldToLocal(X_WE, v.state.x_m, v.state.y_m, &X_EV.x, &X_EV.y);
-    X_EV.yaw = core::WrapAngle(v.state.yaw_rad - X_WE.yaw);
+    core::WorldToLocal(X_WE, s.x_m, s.y_m, &X_EV.x, &X_EV.y);
+    X_EV.yaw = core::WrapAngle(s.yaw_rad - X_WE.yaw);
     const LaneIndex lane = std::fabs(std::cos(X_EV.yaw)) >= std::cos(core::kPi / 4)
                                ? AssociateLane(ego_fitted, X_EV.x, X_EV.y)
                                : LaneIndex::kNone;
-    info.lane = static_cast<int>(lane);
-    LaneSet lanes = !params.road_model ? VirtualLaneSet(v.state, params.virtual_lane_width_m)
-                    : v.lanes          ? *v.lanes
+    if (associated) *associated = lane;
+    LaneSet lanes = !params.road_model ? VirtualLaneSet(s, params.virtual_lane_width_m)
+                    : own              ? *own
                                        : EgoLanesSeenBy(ego_lanes, X_EV, lane);
-    if (!lanes.own) lanes.own = VirtualLane(v.state, params.virtual_lane_width_m);
+    if (!lanes.own) lanes.own = VirtualLane(s, params.virtual_lane_width_m);
+    return lanes;
+  };
+  int offset = 0;
+  pb.co_offset.push_back(0);
+  std::vector<core::HypothesisSet> carriage_sets;  // appended after every object
+  for (size_t i = 0; i < scene.vehicles.size(); ++i) {
+    const Vehicle& v = scene.vehicles[i];
+    const std::string where = ObjectName("scene.vehicles", i, v.id);
+    core::HypothesisSet h;
+    h.model = core::MotionModelKind::kOneTrack;
+    h.vehicle = VehicleModelParams(v.length_m, v.width_m, v.height_m, v.type, params);
+    SetPose(v.state, v.length_m, v.width_m, &h);
+    SetRouteEnd(v.state, params, &h);
+    h.seam_speed = SeamSpeedOf(h.vehicle, v.type, params);
+    ObjectResult info;
+    info.id = v.id;
+    info.kind = ObjectKind::kVehicle;
+    LaneIndex lane = LaneIndex::kNone;
+    const LaneSet lanes = lanes_of(v.state, v.lanes, &lane);
+    info.lane = static_cast<int>(lane);
     const FittedLanes fitted = FitLanes(lanes, where + ".lanes", params);
     const double a_ref = ReferenceAccel(v.state, fitted.own->Centre(), params);
     const std::optional<StopObligation> stop = CredibleStop(v, params);
     std::vector<double> accel;
     int stop_profile = -1;
-    const std::vector<ProfileScore> profiles = SetVehicleProfiles(
-        params, a_ref, &h, &accel, nullptr, stop ? &*stop : nullptr, &stop_profile);
-    const std::vector<PathScore> paths = SetPaths(fitted, params, /*combine=*/false, a_ref, &h);
+    const std::vector<ProfileScore> profiles =
+        SetVehicleProfiles(params, a_ref, RangeOf(v.type, params), &h, &accel, nullptr,
+                           stop ? &*stop : nullptr, &stop_profile);
+    const bool track = TrackBound(v.type, params);
+    if (track) h.steer_latency = 0.0;
+    const std::vector<PathScore> paths =
+        SetPaths(fitted, params, /*combine=*/false, a_ref, &h, nullptr, track);
+    if (track) PutOnTrack(&h);
     AppendProbabilities(profiles, paths, params, &pb.co_probability);
     if (stop_profile >= 0) {
       // A mixture: complying (every hypothesis scored against the stopping profile as the
@@ -588,6 +778,36 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     info.first_trajectory = offset;
     info.trajectories = h.Trajectories();
     offset += info.trajectories;
+    // Its carriages (estimator/ALGORITHM.md, "Long and articulated bodies"): each a hypothesis
+    // set of its own pose, lanes and box with the vehicle's profiles (so it moves with the
+    // vehicle's speed along its own lane), folded into the vehicle's columns before the risk.
+    for (size_t k = 0; k < v.carriages.size(); ++k) {
+      const Carriage& car = v.carriages[k];
+      core::HypothesisSet c = h;  // profiles, latencies, limits, route end, top speed
+      c.vehicle = VehicleModelParams(car.length_m, car.width_m, std::nullopt, v.type, params);
+      // The vehicle's drive, so that its speed is the vehicle's at every step.
+      c.vehicle.power_per_mass_wpkg = h.vehicle.power_per_mass_wpkg;
+      ObjectState cs = v.state;
+      cs.x_m = car.x_m;
+      cs.y_m = car.y_m;
+      cs.yaw_rad = car.yaw_rad;
+      cs.yaw_rate_radps = car.yaw_rate_radps;
+      cs.sideslip_rad = 0.0;
+      SetPose(cs, car.length_m, car.width_m, &c);
+      c.seam_speed = SeamSpeedOf(c.vehicle, v.type, params);
+      const FittedLanes car_fitted =
+          FitLanes(lanes_of(cs, car.lanes, nullptr),
+                   where + ".carriages[" + std::to_string(k) + "].lanes", params);
+      // Its paths: those of the vehicle (the same lateral samples of its own lanes) where its
+      // lanes have the vehicle's neighbours, else (and on a track) its own lane's centre for
+      // every hypothesis.
+      const bool same_lanes = car_fitted.left.has_value() == fitted.left.has_value() &&
+                              car_fitted.right.has_value() == fitted.right.has_value();
+      SetPaths(car_fitted, params, /*combine=*/false, a_ref, &c, nullptr, track || !same_lanes);
+      if (track) PutOnTrack(&c);  // its own track, replacing the copy of the vehicle's
+      carriage_sets.push_back(c);
+      pb.carriage_object.push_back(static_cast<int>(i));
+    }
     pb.cos.push_back(h);
     pb.objects.push_back(info);
     pb.co_offset.push_back(offset);
@@ -658,6 +878,17 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     offset += info.trajectories;
     pb.cos.push_back(h);
     pb.objects.push_back(info);
+    pb.co_offset.push_back(offset);
+  }
+
+  // The carriages' sets after every object, so that the objects' columns of the pair matrix
+  // come first (FoldCarriages). Their probabilities are never used (the vehicle's are); each
+  // set gets a uniform distribution so that the unfolded problem stays well-formed.
+  for (const core::HypothesisSet& c : carriage_sets) {
+    pb.cos.push_back(c);
+    const int n = c.Trajectories();
+    for (int t = 0; t < n; ++t) pb.co_probability.push_back(1.0 / n);
+    offset += n;
     pb.co_offset.push_back(offset);
   }
 

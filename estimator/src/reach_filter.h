@@ -29,11 +29,12 @@ namespace criticality::internal {
 std::vector<double> EgoReachBound(const core::HypothesisSet& ego,
                                   const core::SimulationConfig& sim);
 
-/** out[o] = 1 when collision object o of `problem` can meet no ego hypothesis. */
+/** out[o] = 1 when collision object o of `problem` (o < problem.objects.size()) can meet no
+ *  ego hypothesis: neither its own box nor any of its carriages' boxes. */
 std::vector<char> OutOfReach(const Problem& problem);
 
-/** `problem` without the objects marked in `drop` (their trajectories, probabilities and
- *  results); kept objects keep their order. */
+/** `problem` without the objects marked in `drop` (their trajectories, their carriages',
+ *  probabilities and results); kept objects and carriages keep their order. */
 Problem WithoutObjects(const Problem& problem, const std::vector<char>& drop);
 
 }  // namespace criticality::internal

@@ -59,6 +59,16 @@ void AssessRisk(const Problem& pb, const Params& params, const std::int16_t* fir
   FinishDecisionOutputs(pb, params, ego_hit, result);
 }
 
+void AssessBodies(const Problem& pb, const Params& params, std::vector<std::int16_t>* first_step,
+                  int threads, Result* result) {
+  if (!pb.HasCarriages()) {
+    AssessRisk(pb, params, first_step->data(), threads, result);
+    return;
+  }
+  *first_step = FoldCarriages(pb, *first_step);
+  AssessRisk(ObjectProblem(pb), params, first_step->data(), threads, result);
+}
+
 void FinishDecisionOutputs(const Problem& pb, const Params& params,
                            const std::vector<char>& ego_hit, Result* result) {
   const int n_ego = pb.EgoTrajectories();

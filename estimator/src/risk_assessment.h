@@ -17,6 +17,13 @@ namespace criticality::internal {
 void AssessRisk(const Problem& problem, const Params& params, const std::int16_t* first_step,
                 int threads, Result* result);
 
+/** AssessRisk of a problem whose vehicles may have carriages: with carriages, `first_step`
+ *  (the backends' pair matrix over every set) is folded into the objects' columns first
+ *  (FoldCarriages) and replaced by the folded matrix, and the objects alone are assessed
+ *  (ObjectProblem); without, it is AssessRisk on `first_step` as it is. */
+void AssessBodies(const Problem& problem, const Params& params,
+                  std::vector<std::int16_t>* first_step, int threads, Result* result);
+
 /** The outputs for decisions, from result->ego_collision_probability (every backend fills it)
  *  and which ego hypotheses collide with any CO hypothesis: p_reference, unavoidability, the
  *  count of collision-free ego hypotheses and the escape routes, each re-simulated on the host

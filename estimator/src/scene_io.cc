@@ -42,6 +42,40 @@ void WriteLanes(std::ostream& out, const LaneSet& lanes) {
   one("right", lanes.right);
 }
 
+const char* RoadUserName(RoadUser r) {
+  switch (r) {
+    case RoadUser::kCar:
+      return "car";
+    case RoadUser::kMotorcycle:
+      return "motorcycle";
+    case RoadUser::kBicycle:
+      return "bicycle";
+    case RoadUser::kHeavy:
+      return "heavy";
+    case RoadUser::kRail:
+      return "rail";
+  }
+  return "?";
+}
+
+// A 'type' line when the type is not a plain car without values (files without types stay as
+// they were).
+void WriteType(std::ostream& out, const VehicleType& t) {
+  if (t.road_user == RoadUser::kCar && !t.mass_kg && !t.accel_mps2 && !t.decel_mps2 &&
+      !t.emergency_decel_mps2 && !t.max_speed_mps)
+    return;
+  out << "type " << RoadUserName(t.road_user);
+  auto value = [&](const char* key, const std::optional<double>& v) {
+    if (v) out << ' ' << key << ' ' << *v;
+  };
+  value("mass", t.mass_kg);
+  value("accel", t.accel_mps2);
+  value("decel", t.decel_mps2);
+  value("emergency-decel", t.emergency_decel_mps2);
+  value("max-speed", t.max_speed_mps);
+  out << '\n';
+}
+
 const char* StopReasonName(StopLine::Reason r) {
   switch (r) {
     case StopLine::Reason::kRedLight:
@@ -106,6 +140,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
   WriteHeight(out, scene.ego.height_m);
   out << '\n';
   WriteStateLines(out, scene.ego.state);
+  WriteType(out, scene.ego.type);
   WriteLanes(out, scene.ego.lanes);
   for (const Vehicle& v : scene.vehicles) {
     out << "vehicle " << v.id;
@@ -118,6 +153,12 @@ void WriteScene(std::ostream& out, const Scene& scene) {
     if (v.stop_line) {
       out << "stop " << StopReasonName(v.stop_line->reason) << ' ' << v.stop_line->distance_m
           << '\n';
+    }
+    WriteType(out, v.type);
+    for (const Carriage& c : v.carriages) {
+      out << "carriage " << c.x_m << ' ' << c.y_m << ' ' << c.yaw_rad << ' ' << c.yaw_rate_radps
+          << ' ' << c.length_m << ' ' << c.width_m << ' ' << (c.lanes ? 1 : 0) << '\n';
+      if (c.lanes) WriteLanes(out, *c.lanes);
     }
   }
   for (const Pedestrian& p : scene.pedestrians) {
@@ -132,7 +173,8 @@ Scene ReadScene(std::istream& in, const std::string& source) {
   Scene scene;
   LaneSet* lanes = nullptr;
   ObjectState* state = nullptr;  // of the last ego or vehicle, for 'expected-accel', 'route-end'
-  Vehicle* vehicle = nullptr;    // the last vehicle read, for its 'stop' line
+  VehicleType* type = nullptr;   // of the last ego or vehicle, for 'type'
+  Vehicle* vehicle = nullptr;    // the last vehicle read, for its 'stop' and 'carriage' lines
   Pedestrian* pedestrian = nullptr;  // the last pedestrian read, for its 'footway' line
   bool header = false, ego = false;
   std::string line;
@@ -162,6 +204,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       scene.ego.height_m = r.Height();
       lanes = &scene.ego.lanes;
       state = &scene.ego.state;
+      type = &scene.ego.type;
       vehicle = nullptr;
       pedestrian = nullptr;
       ego = true;
@@ -177,6 +220,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       scene.vehicles.push_back(std::move(v));
       lanes = has_lanes ? &*scene.vehicles.back().lanes : nullptr;
       state = &scene.vehicles.back().state;
+      type = &scene.vehicles.back().type;
       vehicle = &scene.vehicles.back();
       pedestrian = nullptr;
     } else if (kind == "pedestrian") {
@@ -188,8 +232,54 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       scene.pedestrians.push_back(std::move(p));
       lanes = nullptr;
       state = nullptr;
+      type = nullptr;
       vehicle = nullptr;
       pedestrian = &scene.pedestrians.back();
+    } else if (kind == "type") {
+      if (!type) throw InputError(r.where + ": 'type' must follow an ego or a vehicle");
+      const std::string name = r.Word();
+      VehicleType t;
+      if (name == "car") {
+        t.road_user = RoadUser::kCar;
+      } else if (name == "motorcycle") {
+        t.road_user = RoadUser::kMotorcycle;
+      } else if (name == "bicycle") {
+        t.road_user = RoadUser::kBicycle;
+      } else if (name == "heavy") {
+        t.road_user = RoadUser::kHeavy;
+      } else if (name == "rail") {
+        t.road_user = RoadUser::kRail;
+      } else {
+        throw InputError(r.where + ": road user '" + name +
+                         "' must be car, motorcycle, bicycle, heavy or rail");
+      }
+      while (r.next < r.words.size()) {
+        const std::string key = r.Word();
+        std::optional<double>* field = key == "mass"              ? &t.mass_kg
+                                       : key == "accel"           ? &t.accel_mps2
+                                       : key == "decel"           ? &t.decel_mps2
+                                       : key == "emergency-decel" ? &t.emergency_decel_mps2
+                                       : key == "max-speed"       ? &t.max_speed_mps
+                                                                  : nullptr;
+        if (!field)
+          throw InputError(r.where + ": type value '" + key +
+                           "' must be mass, accel, decel, emergency-decel or max-speed");
+        *field = r.Num();
+      }
+      *type = t;
+    } else if (kind == "carriage") {
+      if (!vehicle) throw InputError(r.where + ": 'carriage' must follow a vehicle");
+      Carriage c;
+      c.x_m = r.Num();
+      c.y_m = r.Num();
+      c.yaw_rad = r.Num();
+      c.yaw_rate_radps = r.Num();
+      c.length_m = r.Num();
+      c.width_m = r.Num();
+      const bool has_lanes = r.Num() != 0.0;
+      if (has_lanes) c.lanes = LaneSet{};
+      vehicle->carriages.push_back(std::move(c));
+      lanes = has_lanes ? &*vehicle->carriages.back().lanes : nullptr;
     } else if (kind == "footway") {
       if (!pedestrian) throw InputError(r.where + ": 'footway' must follow a pedestrian");
       pedestrian->stays_on_footway = true;
@@ -216,7 +306,8 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       vehicle->stop_line = stop;
     } else if (kind == "lane") {
       if (!lanes)
-        throw InputError(r.where + ": 'lane' must follow an ego or a vehicle with LANES 1");
+        throw InputError(r.where +
+                         ": 'lane' must follow an ego, or a vehicle or carriage with LANES 1");
       const std::string which = r.Word();
       Lane lane;
       lane.counter_traffic = r.Num() != 0.0;
@@ -243,7 +334,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
     } else {
       throw InputError(r.where + ": unknown record '" + kind +
                        "' (euler-update-step, ego, vehicle, pedestrian, lane, stop, footway, "
-                       "expected-accel, route-end)");
+                       "expected-accel, route-end, type, carriage)");
     }
     if (r.next != r.words.size()) throw InputError(r.where + ": too many values");
   }

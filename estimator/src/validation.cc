@@ -57,14 +57,76 @@ void ValidateSize(const std::string& where, double length, double width,
                   const std::optional<double>& height) {
   RequirePositive(where + ".length_m", length);
   RequirePositive(where + ".width_m", width);
-  if (length > 30.0) Fail(where + ".length_m", length, "must be <= 30 m");
-  if (width > 5.0) Fail(where + ".width_m", width, "must be <= 5 m");
+  if (length > kMaxBoxLengthM)
+    Fail(where + ".length_m", length,
+         "must be <= 400 m (a longer body is a vehicle with carriages)");
+  if (width > kMaxBoxWidthM) Fail(where + ".width_m", width, "must be <= 5 m");
   if (height) RequirePositive(where + ".height_m", *height);
+}
+
+void ValidateType(const std::string& where, const VehicleType& t) {
+  const int c = static_cast<int>(t.road_user);
+  if (c < static_cast<int>(RoadUser::kCar) || c > static_cast<int>(RoadUser::kRail))
+    Fail(where + ".road_user", c, "must be kCar, kMotorcycle, kBicycle, kHeavy or kRail");
+  auto positive = [&](const char* field, const std::optional<double>& v) {
+    if (v) RequirePositive(where + "." + field, *v);
+  };
+  positive("mass_kg", t.mass_kg);
+  positive("accel_mps2", t.accel_mps2);
+  positive("decel_mps2", t.decel_mps2);
+  positive("emergency_decel_mps2", t.emergency_decel_mps2);
+  positive("max_speed_mps", t.max_speed_mps);
+}
+
+void ValidateCarriages(const std::string& where, const std::vector<Carriage>& carriages) {
+  if (carriages.size() > static_cast<size_t>(kMaxCarriages))
+    Fail(where + ".carriages (count)", carriages.size(),
+         "must be at most 64 (join neighbouring carriages into boxes of up to 400 m)");
+  for (size_t k = 0; k < carriages.size(); ++k) {
+    const Carriage& c = carriages[k];
+    const std::string at = where + ".carriages[" + std::to_string(k) + "]";
+    RequireFinite(at + ".x_m", c.x_m);
+    RequireFinite(at + ".y_m", c.y_m);
+    RequireFinite(at + ".yaw_rad", c.yaw_rad);
+    RequireFinite(at + ".yaw_rate_radps", c.yaw_rate_radps);
+    ValidateSize(at, c.length_m, c.width_m, std::nullopt);
+  }
+}
+
+void ValidateLimits(const std::string& where, const RoadUserLimits& c) {
+  RequirePositive(where + ".accel_mps2", c.accel_mps2);
+  RequirePositive(where + ".decel_mps2", c.decel_mps2);
+  RequirePositive(where + ".emergency_decel_mps2", c.emergency_decel_mps2);
+  RequirePositive(where + ".max_speed_mps", c.max_speed_mps);
+  RequirePositive(where + ".mass_kg", c.mass_kg);
+  RequirePositive(where + ".power_per_mass_wpkg", c.power_per_mass_wpkg);
+  RequirePositive(where + ".wheelbase_share", c.wheelbase_share);
+  RequirePositive(where + ".wheelbase_min_m", c.wheelbase_min_m);
+  RequireFinite(where + ".wheelbase_max_m", c.wheelbase_max_m);
+  if (c.wheelbase_max_m < c.wheelbase_min_m)
+    Fail(where + ".wheelbase_max_m", c.wheelbase_max_m, "must be >= wheelbase_min_m");
+  RequirePositive(where + ".cornering_stiffness_per_kg", c.cornering_stiffness_per_kg);
 }
 
 }  // namespace
 
 int Params::TimeSteps() const { return static_cast<int>(std::llround(horizon_s / step_s)); }
+
+const RoadUserLimits* Params::LimitsOf(RoadUser road_user) const {
+  switch (road_user) {
+    case RoadUser::kCar:
+      return nullptr;
+    case RoadUser::kMotorcycle:
+      return &motorcycle;
+    case RoadUser::kBicycle:
+      return &bicycle;
+    case RoadUser::kHeavy:
+      return &heavy;
+    case RoadUser::kRail:
+      return &rail;
+  }
+  return nullptr;
+}
 
 void ValidateParams(const Params& p) {
   RequirePositive("params.horizon_s", p.horizon_s);
@@ -170,6 +232,11 @@ void ValidateParams(const Params& p) {
   RequireFinite("params.turn_lane_frame_min_rad", p.turn_lane_frame_min_rad);
   if (p.turn_lane_frame_min_rad < 0.0)
     Fail("params.turn_lane_frame_min_rad", p.turn_lane_frame_min_rad, "must be >= 0");
+  ValidateLimits("params.motorcycle", p.motorcycle);
+  ValidateLimits("params.bicycle", p.bicycle);
+  ValidateLimits("params.heavy", p.heavy);
+  ValidateLimits("params.rail", p.rail);
+  RequirePositive("params.yaw_inertia_box_share", p.yaw_inertia_box_share);
   if (p.max_escape_routes < 0)
     Fail("params.max_escape_routes", p.max_escape_routes, "must be >= 0");
   if (p.max_memory_bytes == 0) Fail("params.max_memory_bytes", p.max_memory_bytes, "must be > 0");
@@ -196,6 +263,7 @@ Params ParamsPreset(const std::string& name) {
     p.curve_speed_reference = false;
     p.straight_before_turn = false;
     p.route_end_leaves = false;
+    p.road_user_classes = false;
     return p;
   }
   std::string names;
@@ -207,6 +275,12 @@ std::vector<std::string> ParamsPresetNames() { return {"default", "paper-literal
 
 namespace internal {
 
+std::string ObjectName(const std::string& list, size_t index, const std::string& id) {
+  std::string name = list + "[" + std::to_string(index) + "]";
+  if (!id.empty()) name += " ('" + id + "')";
+  return name;
+}
+
 void ValidateScene(const Scene& scene, const Params& /*params*/) {
   const size_t objects = scene.vehicles.size() + scene.pedestrians.size();
   if (objects > 65535)
@@ -217,19 +291,22 @@ void ValidateScene(const Scene& scene, const Params& /*params*/) {
          "must be in [0, 10] s (0: continuous motion)");
   ValidateState("scene.ego.state", scene.ego.state);
   ValidateSize("scene.ego", scene.ego.length_m, scene.ego.width_m, scene.ego.height_m);
+  ValidateType("scene.ego.type", scene.ego.type);
   for (size_t i = 0; i < scene.vehicles.size(); ++i) {
-    const std::string where = "scene.vehicles[" + std::to_string(i) + "]";
-    ValidateState(where + ".state", scene.vehicles[i].state);
-    ValidateSize(where, scene.vehicles[i].length_m, scene.vehicles[i].width_m,
-                 scene.vehicles[i].height_m);
-    if (const auto& stop = scene.vehicles[i].stop_line) {
+    const Vehicle& v = scene.vehicles[i];
+    const std::string where = ObjectName("scene.vehicles", i, v.id);
+    ValidateState(where + ".state", v.state);
+    ValidateSize(where, v.length_m, v.width_m, v.height_m);
+    if (const auto& stop = v.stop_line) {
       RequireFinite(where + ".stop_line.distance_m", stop->distance_m);
       if (stop->distance_m < 0.0)
         Fail(where + ".stop_line.distance_m", stop->distance_m, "must be >= 0");
     }
+    ValidateType(where + ".type", v.type);
+    ValidateCarriages(where, v.carriages);
   }
   for (size_t i = 0; i < scene.pedestrians.size(); ++i) {
-    const std::string where = "scene.pedestrians[" + std::to_string(i) + "]";
+    const std::string where = ObjectName("scene.pedestrians", i, scene.pedestrians[i].id);
     ValidateState(where + ".state", scene.pedestrians[i].state);
     ValidateSize(where, scene.pedestrians[i].length_m, scene.pedestrians[i].width_m, std::nullopt);
   }

@@ -106,7 +106,7 @@ TEST(RouteEnd, ANegativeOrNonFiniteRouteEndIsRejected) {
     Estimator(Params{}).Estimate(bad);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("scene.vehicles[0].state.route_end_m = -1"),
+    EXPECT_NE(std::string(e.what()).find("scene.vehicles[0] ('arriving').state.route_end_m = -1"),
               std::string::npos)
         << e.what();
   }

@@ -5,6 +5,7 @@
 
 #include <sstream>
 
+#include "bench/paper_scenes.h"
 #include "criticality/errors.h"
 #include "criticality/estimator.h"
 #include "test_scenes.h"
@@ -112,6 +113,111 @@ TEST(SceneIo, StraightToMiddleRoundTrips) {
     EXPECT_NE(std::string(e.what()).find("f.scene:3: lane shape 'curvy'"), std::string::npos)
         << e.what();
   }
+}
+
+TEST(SceneIo, TypesAndCarriagesRoundTrip) {
+  Scene scene = testing::RandomScene(5, 3, 1, true);
+  ASSERT_EQ(scene.vehicles.size(), 3u);
+  scene.ego.type.road_user = RoadUser::kHeavy;
+  scene.ego.type.mass_kg = 18000.0;
+  scene.ego.type.emergency_decel_mps2 = 5.5;
+  Vehicle& tram = scene.vehicles[0];
+  tram.type.road_user = RoadUser::kRail;
+  tram.type.accel_mps2 = 1.1;
+  tram.type.decel_mps2 = 1.3;
+  tram.type.max_speed_mps = 70.0 / 3.6;
+  for (int k = 0; k < 3; ++k) {
+    Carriage c;
+    c.x_m = tram.state.x_m - 20.0 * (k + 1);
+    c.y_m = tram.state.y_m + 0.1 * k;
+    c.yaw_rad = 0.01 * k;
+    c.yaw_rate_radps = -0.02 * k;
+    c.length_m = 19.0 + k;
+    c.width_m = 2.65;
+    if (k == 1) c.lanes = bench::StraightThreeLanes();
+    tram.carriages.push_back(c);
+  }
+  scene.vehicles[2].type.road_user = RoadUser::kBicycle;  // a class without values
+  std::stringstream file;
+  WriteScene(file, scene);
+  const Scene back = ReadScene(file);
+  ASSERT_EQ(back.vehicles.size(), 3u);
+  EXPECT_EQ(back.ego.type.road_user, RoadUser::kHeavy);
+  EXPECT_EQ(back.ego.type.mass_kg, std::optional<double>(18000.0));
+  EXPECT_EQ(back.ego.type.emergency_decel_mps2, std::optional<double>(5.5));
+  EXPECT_FALSE(back.ego.type.accel_mps2.has_value());
+  const Vehicle& t = back.vehicles[0];
+  EXPECT_EQ(t.type.road_user, RoadUser::kRail);
+  EXPECT_EQ(t.type.accel_mps2, std::optional<double>(1.1));
+  EXPECT_EQ(t.type.decel_mps2, std::optional<double>(1.3));
+  EXPECT_EQ(t.type.max_speed_mps, tram.type.max_speed_mps);  // 17 digits: exactly
+  EXPECT_FALSE(t.type.mass_kg.has_value());
+  ASSERT_EQ(t.carriages.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(t.carriages[k].x_m, tram.carriages[k].x_m) << k;
+    EXPECT_EQ(t.carriages[k].y_m, tram.carriages[k].y_m) << k;
+    EXPECT_EQ(t.carriages[k].yaw_rad, tram.carriages[k].yaw_rad) << k;
+    EXPECT_EQ(t.carriages[k].yaw_rate_radps, tram.carriages[k].yaw_rate_radps) << k;
+    EXPECT_EQ(t.carriages[k].length_m, tram.carriages[k].length_m) << k;
+    EXPECT_EQ(t.carriages[k].width_m, tram.carriages[k].width_m) << k;
+    EXPECT_EQ(t.carriages[k].lanes.has_value(), k == 1) << k;
+  }
+  ASSERT_TRUE(t.carriages[1].lanes && t.carriages[1].lanes->left);
+  EXPECT_EQ(t.carriages[1].lanes->left->left.points[2].y,
+            tram.carriages[1].lanes->left->left.points[2].y);
+  // The vehicle's own lanes stayed its own (the carriage's lane lines did not go to it).
+  EXPECT_EQ(t.lanes.has_value(), tram.lanes.has_value());
+  EXPECT_EQ(back.vehicles[1].type.road_user, RoadUser::kCar);
+  EXPECT_TRUE(back.vehicles[1].carriages.empty());
+  EXPECT_EQ(back.vehicles[2].type.road_user, RoadUser::kBicycle);
+  // The same estimate, and the same text once more.
+  EXPECT_EQ(Estimator(Params{}).Estimate(scene).p_collision,
+            Estimator(Params{}).Estimate(back).p_collision);
+  std::stringstream again;
+  WriteScene(again, back);
+  EXPECT_EQ(again.str(), file.str());
+}
+
+TEST(SceneIo, FilesWithoutTypesReadAsCarsAndUntypedScenesWriteNoTypeLines) {
+  // A file from before types and carriages: every vehicle a car with no values.
+  std::istringstream old(
+      "criticality-scene 1\nego e 0 0 0 10 0 0 0 4.5 1.8 -\n"
+      "vehicle v 20 0 0 8 0 0 0 4.5 1.8 - 0\n");
+  const Scene scene = ReadScene(old);
+  ASSERT_EQ(scene.vehicles.size(), 1u);
+  EXPECT_EQ(scene.vehicles[0].type.road_user, RoadUser::kCar);
+  EXPECT_FALSE(scene.vehicles[0].type.accel_mps2.has_value());
+  EXPECT_TRUE(scene.vehicles[0].carriages.empty());
+  std::stringstream file;
+  WriteScene(file, testing::RandomScene(7, 4, 2, false));
+  EXPECT_EQ(file.str().find("\ntype "), std::string::npos);
+  EXPECT_EQ(file.str().find("\ncarriage "), std::string::npos);
+}
+
+TEST(SceneIo, BadTypeAndCarriageLinesNameTheLine) {
+  auto error = [](const std::string& text) {
+    std::istringstream in(text);
+    try {
+      ReadScene(in, "f.scene");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string head = "criticality-scene 1\nego e 0 0 0 1 0 0 0 4.5 1.8 -\n";
+  EXPECT_NE(error(head + "type tractor\n").find("f.scene:3: road user 'tractor'"),
+            std::string::npos);
+  EXPECT_NE(error(head + "type heavy weight 3\n").find("f.scene:3: type value 'weight'"),
+            std::string::npos);
+  EXPECT_NE(error(head + "carriage 0 0 0 0 10 2.5 0\n").find("f.scene:3: 'carriage' must follow"),
+            std::string::npos);
+  EXPECT_NE(error(head + "pedestrian p 0 0 0 1 0 0 0 .5 .5\ntype car\n")
+                .find("f.scene:4: 'type' must follow"),
+            std::string::npos);
+  EXPECT_NE(error(head + "vehicle v 9 0 0 1 0 0 0 4.5 1.8 - 0\ncarriage 0 0 0 0 10 2.5 0\n"
+                         "lane own 0 0 1 10 1 20 1 0 -1 10 -1 20 -1\n")
+                .find("f.scene:5: 'lane' must follow"),
+            std::string::npos);
 }
 
 TEST(SceneIo, BadFilesNameTheLine) {

@@ -36,7 +36,7 @@ void ExpectMentions(const std::string& msg, const std::string& field, const std:
 TEST(Validation, NanAndInfiniteStates) {
   Scene s = bench::PaperSceneS1();
   s.vehicles[1].state.speed_mps = std::nan("");
-  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[1].state.speed_mps", "nan");
+  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[1] ('left').state.speed_mps", "nan");
   s = bench::PaperSceneS1();
   s.ego.state.x_m = std::numeric_limits<double>::infinity();
   ExpectMentions(EstimateError<InputError>(s), "scene.ego.state.x_m", "inf");
@@ -57,7 +57,7 @@ TEST(Validation, EulerUpdateStepMustBeInRange) {
 TEST(Validation, NegativeSizesAndSpeeds) {
   Scene s = bench::PaperSceneS1();
   s.vehicles[0].length_m = -4.0;
-  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[0].length_m", "-4");
+  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[0] ('lead').length_m", "-4");
   s = bench::PaperSceneS1();
   s.ego.width_m = 0.0;
   ExpectMentions(EstimateError<InputError>(s), "scene.ego.width_m", "0");
@@ -68,13 +68,97 @@ TEST(Validation, NegativeSizesAndSpeeds) {
   ExpectMentions(EstimateError<InputError>(s), "scene.pedestrians[0].state.speed_mps", "-1");
 }
 
+TEST(Validation, ALongVehicleOfOneBoxIsAcceptedUpTo400Metres) {
+  Scene s = bench::PaperSceneS1();
+  s.vehicles[1].length_m = 135.0;  // a city train as one box (the first failure)
+  s.vehicles[1].width_m = 2.65;
+  EXPECT_NO_THROW(Estimator(Params{}).Estimate(s));
+  s.ego.length_m = 135.0;  // and as the ego
+  EXPECT_NO_THROW(Estimator(Params{}).Estimate(s));
+  s = bench::PaperSceneS1();
+  s.vehicles[2].id = "train7";
+  s.vehicles[2].length_m = 401.0;
+  const std::string msg = EstimateError<InputError>(s);
+  EXPECT_NE(msg.find("scene.vehicles[2] ('train7').length_m = 401: must be <= 400 m"),
+            std::string::npos)
+      << msg;
+}
+
+TEST(Validation, ErrorsNameTheObjectByIndexAndId) {
+  Scene s = bench::PaperSceneS1();
+  s.vehicles[0].width_m = 5.5;
+  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[0] ('lead').width_m", "5.5");
+  s = bench::PaperSceneS1();
+  s.vehicles[0].id.clear();  // no id: the index alone
+  s.vehicles[0].width_m = 5.5;
+  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[0].width_m", "5.5");
+  s = bench::PaperSceneS1();
+  Pedestrian p;
+  p.id = "walker";
+  p.state.speed_mps = std::nan("");
+  s.pedestrians.push_back(p);
+  ExpectMentions(EstimateError<InputError>(s), "scene.pedestrians[0] ('walker').state.speed_mps",
+                 "nan");
+}
+
+TEST(Validation, CarriagesAreCheckedBoxByBox) {
+  auto with_carriages = [](int n) {
+    Scene s = bench::PaperSceneS1();
+    s.vehicles[0].id = "tram3";
+    for (int k = 0; k < n; ++k) {
+      Carriage c;
+      c.x_m = s.vehicles[0].state.x_m - 10.0 * (k + 1);
+      s.vehicles[0].carriages.push_back(c);
+    }
+    return s;
+  };
+  EXPECT_NO_THROW(Estimator(Params{}).Estimate(with_carriages(kMaxCarriages)));
+  ExpectMentions(EstimateError<InputError>(with_carriages(kMaxCarriages + 1)),
+                 "scene.vehicles[0] ('tram3').carriages (count)", "65");
+  Scene s = with_carriages(3);
+  s.vehicles[0].carriages[1].length_m = 401.0;
+  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[0] ('tram3').carriages[1].length_m",
+                 "401");
+  s = with_carriages(3);
+  s.vehicles[0].carriages[2].yaw_rad = std::numeric_limits<double>::infinity();
+  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[0] ('tram3').carriages[2].yaw_rad",
+                 "inf");
+  s = with_carriages(3);
+  s.vehicles[0].carriages[0].y_m = std::nan("");
+  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[0] ('tram3').carriages[0].y_m",
+                 "nan");
+  s = with_carriages(1);
+  s.vehicles[0].carriages[0].lanes = bench::StraightThreeLanes();
+  s.vehicles[0].carriages[0].lanes->own->left.points[1].x = 0.0;  // repeated x
+  ExpectMentions(EstimateError<InputError>(s),
+                 "scene.vehicles[0] ('tram3').carriages[0].lanes.own.left", "distinct x");
+}
+
+TEST(Validation, VehicleTypeValuesMustBePositive) {
+  Scene s = bench::PaperSceneS1();
+  s.vehicles[1].type.emergency_decel_mps2 = -3.0;
+  ExpectMentions(EstimateError<InputError>(s),
+                 "scene.vehicles[1] ('left').type.emergency_decel_mps2", "-3");
+  s = bench::PaperSceneS1();
+  s.ego.type.max_speed_mps = 0.0;
+  ExpectMentions(EstimateError<InputError>(s), "scene.ego.type.max_speed_mps", "0");
+  s = bench::PaperSceneS1();
+  s.vehicles[2].type.road_user = static_cast<RoadUser>(9);
+  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[2] ('right-behind').type.road_user",
+                 "9");
+  Params p;
+  p.heavy.emergency_decel_mps2 = 0.0;
+  EXPECT_THROW(ValidateParams(p), InputError);
+}
+
 TEST(Validation, DegenerateLanePoints) {
   Scene s = bench::PaperSceneS1();
   s.ego.lanes.right->right.points[2] = s.ego.lanes.right->right.points[1];
   ExpectMentions(EstimateError<InputError>(s), "scene.ego.lanes.right.right", "distinct x");
   s = bench::PaperSceneS1();
   s.vehicles[2].lanes->own->left.points[0].y = std::nan("");
-  ExpectMentions(EstimateError<InputError>(s), "scene.vehicles[2].lanes.own.left.points[0]", "nan");
+  ExpectMentions(EstimateError<InputError>(s),
+                 "scene.vehicles[2] ('right-behind').lanes.own.left.points[0]", "nan");
 }
 
 TEST(Validation, HorizonAndStepMustBePositive) {

@@ -8,7 +8,35 @@
 #include <string>
 #include <vector>
 
+#include "criticality/scene.h"
+
 namespace criticality {
+
+/** Limits and model data of one class of road user other than passenger cars (Scene.h
+ *  RoadUser; Params::road_user_classes; estimator/ALGORITHM.md "Road users by class"). The
+ *  longitudinal limits bound every hypothesis of a vehicle of the class where its VehicleType
+ *  gives no value; the model data replace vehicle_class.h's car classes. */
+struct RoadUserLimits {
+  double accel_mps2{2.6};  ///< the largest acceleration (positive profiles)
+  double decel_mps2{4.5};  ///< normal largest deceleration (SUMO's decel)
+  /** The largest deceleration: the hardest braking profile. Where a VehicleType gives decel but
+   *  no emergency_decel, the larger of its decel and this (SUMO's own default rule). */
+  double emergency_decel_mps2{9.0};
+  double max_speed_mps{55.6};  ///< positive profiles stop at this speed
+  double mass_kg{1500.0};      ///< the model mass where the VehicleType gives none
+  /** Driving power at the wheels per unit mass, W/kg (Params::power_limited_drive). */
+  double power_per_mass_wpkg{60.0};
+  /** Wheelbase as a share of the box length, clamped to [wheelbase_min_m, wheelbase_max_m]. */
+  double wheelbase_share{0.6};
+  double wheelbase_min_m{1.8};
+  double wheelbase_max_m{4.0};
+  /** Axle cornering stiffness per kg of vehicle mass, N/rad per axle (the one- and two-track
+   *  models; scaled with mass as for cars, vehicle_class.h). */
+  double cornering_stiffness_per_kg{55.0};
+  /** The kinematic single-track model at every speed (no tyre model): bicycles, whose tyre
+   *  dynamics mean little at 5 m/s (rail vehicles, on their track, use none). */
+  bool kinematic{false};
+};
 
 struct Params {
   // --- Horizon (paper Sec. IV-C and V-B: 2 s predicted with 20 ms resolution = 100 steps) ---
@@ -85,6 +113,69 @@ struct Params {
   /** Tyre-road friction coefficient, dry asphalt about 1.0 (DESIGN.md; the paper's +-9.7 m/s^2
    *  range is about 1 g). */
   double friction{1.0};
+
+  // --- Road users by class (Scene.h RoadUser, VehicleType; estimator/ALGORITHM.md "Road users
+  // by class"). SUMO's vClass defaults: sumo.dlr.de/docs/Vehicle_Type_Parameter_Defaults.html
+  // and SUMOVTypeParameter.cpp (getDefaultAccel, getDefaultDecel, getDefaultEmergencyDecel,
+  // VClassDefaultValues: maxSpeed, mass), github.com/eclipse-sumo/sumo, 2025. ---
+  /** With true, a vehicle's (and the ego's) VehicleType bounds its hypotheses and its class
+   *  picks its model. A class other than kCar: profiles from its emergency deceleration (the
+   *  VehicleType's, else the class's) up to its acceleration, never above its top speed, mass,
+   *  yaw inertia, wheelbase, cornering stiffness and power of its class, bicycles and rail
+   *  vehicles kinematic, rail vehicles on one path (their own lane's centre). A kCar keeps the
+   *  paper's grid (vehicle_accel_min/max_mps2, positive profiles bounded by power and traction);
+   *  its VehicleType's emergency deceleration only floors the samples and its top speed caps
+   *  them. A kCar without VehicleType values keeps vehicle_class.h and no top speed, so results
+   *  without types are those without classes, bit for bit.
+   *  Paper-literal: false (every vehicle a car with the paper's ranges, VehicleType ignored). */
+  bool road_user_classes{true};
+  /** Motorcycles and mopeds. SUMO (vClass motorcycle): accel 6, decel 10, emergencyDecel 10
+   *  m/s^2, maxSpeed 200 km/h, mass 200 kg without its rider; + 70 kg (SUMO's person) = 270 kg.
+   *  Power at the wheels: our estimate for a mid-size machine, 50 kW for 270 kg with rider, at
+   *  0.9 drivetrain efficiency (as vehicle_class.h): 165 W/kg (the accel bound and traction cap
+   *  it below about 5 m/s^2 at most speeds). Wheelbase: 1.4-1.5 m on a 2.2 m motorcycle
+   *  (SUMO's length): 0.65 of the length. Cornering stiffness per kg as for cars (no better
+   *  single-track figure; the one-track model treats it as a narrow car). */
+  RoadUserLimits motorcycle{6.0,  10.0, 10.0, 200.0 / 3.6, 270.0, 165.0,
+                            0.65, 1.0,  1.8,  55.0,        false};
+  /** Bicycles (and e-scooters). SUMO (vClass bicycle): accel 1.2, decel 3, emergencyDecel 7
+   *  m/s^2, a speed of 20 km/h (5.56 m/s: SUMO 1.7's maxSpeed; today's SUMO keeps it as the
+   *  desiredMaxSpeed beside a maxSpeed of 50 km/h; a vType's own maxSpeed replaces it), mass
+   *  10 kg + 70 kg rider = 80 kg. Power at the wheels 8 W/kg (640 W for 80 kg, a sprint from
+   *  the pedals; our estimate), so that the accel bound, not the power, limits a cyclist up to
+   *  its top speed. Wheelbase about 1.0-1.1 m on SUMO's 1.6 m bicycle: 0.62 of the length.
+   *  Kinematic: a tyre model means little at 5 m/s. */
+  RoadUserLimits bicycle{1.2, 3.0, 7.0, 20.0 / 3.6, 80.0, 8.0, 0.62, 0.8, 1.3, 55.0, true};
+  /** Trucks, trailers, buses and coaches. SUMO: accel 1.3 (truck; trailer 1.1, bus 1.2, coach
+   *  2), decel 4, emergencyDecel 7, maxSpeed 130 km/h (truck, trailer; bus, coach 100 km/h),
+   *  mass 4.5 t (truck), 13 t (trailer), 12 t (bus), 25 t (coach), all unladen. Emergency
+   *  deceleration 6 m/s^2, below SUMO's 7: FMVSS 121 (NHTSA final rule, Federal Register
+   *  74(142), 27 July 2009) stops a loaded truck tractor from 60 mph within 250 ft, a mean 4.7
+   *  m/s^2 over the stop, about 5.6 m/s^2 once the air brakes' build-up (about 0.45 s) is taken
+   *  out; 6 leaves room for better brakes. Mass 12 t (SUMO's bus; a medium truck with load).
+   *  Power at the wheels 10 W/kg (our estimate: a 40 t articulated truck has 330-420 kW, a
+   *  loaded 18 t city bus 220-250 kW). Wheelbase 0.5 of the length (a 12 m bus about 6 m, a
+   *  7.1 m truck about 3.6 m), 2.5-8 m. Cornering stiffness 30 N/rad per kg per axle, about
+   *  11 % of the axle load per degree: Gillespie (Fundamentals of Vehicle Dynamics, SAE 1992,
+   *  as quoted in the McHenry SMAC documentation) gives 11-19 % for radial tyres (our cars'
+   *  55 N/rad/kg is about 20 %); heavily loaded truck tyres at the low end is our estimate. */
+  RoadUserLimits heavy{1.3, 4.0, 6.0, 130.0 / 3.6, 12000.0, 10.0, 0.5, 2.5, 8.0, 30.0, false};
+  /** Trains, trams and light rail. Braking about 1 m/s^2 normal and 2.5-3 m/s^2 in an emergency
+   *  (issue 21; SUMO: decel 1.3 for trains, 3 for trams, emergencyDecel 5 and 7): 3 m/s^2, the
+   *  upper end (trams with magnetic track brakes were measured at 3.5 m/s^2 in 1990 and 4.9
+   *  m/s^2 in 2017 on dry rail, salingre.de "Strassenbahn"; mainline trains brake far less: a
+   *  vType's own emergencyDecel replaces it). Accel 1 m/s^2 (SUMO tram; rail 0.25), maxSpeed
+   *  160 km/h (SUMO rail; tram 80), mass 37.9 t (SUMO tram). Power at the wheels 12 W/kg (our
+   *  estimate: a 40 t tram with 500-600 kW). Wheelbase: bogie pivots at about 0.7 of a
+   *  coach's length (19 m on a 26.4 m coach), 2-20 m. The track steers it: it keeps to one
+   *  path, its own lane's centre, moving along it by the distance its speed covers
+   *  (core::TrackStep, no steering, no latency, no motion model across its way). */
+  RoadUserLimits rail{1.0, 1.0, 3.0, 160.0 / 3.6, 37900.0, 12.0, 0.7, 2.0, 20.0, 55.0, true};
+  /** Yaw inertia of the classes above: this share of a uniform box's, m (L^2 + W^2) / 12 (a
+   *  vehicle's mass lies nearer its centre than a box's). The car classes of vehicle_class.h
+   *  (Heydinger et al.) lie at 0.78-0.95 of the box of a typical car of their segment; project
+   *  choice 0.8 (a 12 t, 12 m bus: 120,000 kg m^2). */
+  double yaw_inertia_box_share{0.8};
 
   /** The paper's ablation "controller off" (Sec. V-A, Fig. "results"): with false, no lateral
    *  controller tracks the path sections. Steering keeps its initial value until the lateral
@@ -322,6 +413,10 @@ struct Params {
   int max_escape_routes{10};
   /** Upper bound on the memory one estimate may use (trajectories and the pair matrix). */
   std::uint64_t max_memory_bytes{std::uint64_t{4} << 30};
+
+  /** The limits of a class other than kCar (nullptr for kCar: the paper's range and
+   *  vehicle_class.h). */
+  const RoadUserLimits* LimitsOf(RoadUser road_user) const;
 
   /** Number of predicted time steps: round(horizon_s / step_s). */
   int TimeSteps() const;

@@ -60,9 +60,13 @@ struct EscapeRoute {
 /** Work sizes, so that figures compare with the paper's (DESIGN.md "Counting"). */
 struct WorkCounts {
   int time_steps{0};
-  int ego_trajectories{0};             ///< h_acc * h_EGO,str
-  int co_trajectories{0};              ///< sum over COs of their hypotheses
-  std::uint64_t pose_combinations{0};  ///< co_trajectories * ego_trajectories * time_steps
+  int ego_trajectories{0};  ///< h_acc * h_EGO,str
+  int co_trajectories{0};   ///< sum over COs of their hypotheses (the pair matrix's columns)
+  /** Trajectories simulated for the carriages of long vehicles (Vehicle::carriages), checked
+   *  like the COs' and folded into their vehicle's columns. */
+  int carriage_trajectories{0};
+  /** (co_trajectories + carriage_trajectories) * ego_trajectories * time_steps */
+  std::uint64_t pose_combinations{0};
 };
 
 /** Wall time of each module, milliseconds. */

@@ -108,11 +108,22 @@ struct Carriage {
   double length_m{10.0};
   double width_m{2.5};
   /** Its lanes in ITS local frame (a carriage on a curved track follows its own piece of it);
-   *  none: a virtual lane along its heading. */
+   *  none: as for a vehicle without lanes, the ego's lanes seen from its frame when its centre
+   *  lies in one of them along their direction, else a virtual lane along its heading. */
   std::optional<LaneSet> lanes;
 };
 
-/** The vehicle whose criticality is estimated. Simulated with the two-track model. */
+/** Input limits (ValidateScene): every box (the ego's, a vehicle's, each carriage's, a
+ *  pedestrian's) at most kMaxBoxLengthM long and kMaxBoxWidthM wide, at most kMaxCarriages
+ *  carriages per vehicle. A longer body (a 700 m freight train) is more boxes: a caller whose
+ *  object has more parts than kMaxCarriages + 1 joins neighbouring parts into boxes of up to
+ *  kMaxBoxLengthM (estimator/ALGORITHM.md, "Long and articulated bodies"). */
+constexpr double kMaxBoxLengthM = 400.0;
+constexpr double kMaxBoxWidthM = 5.0;
+constexpr int kMaxCarriages = 64;
+
+/** The vehicle whose criticality is estimated. Simulated with the two-track model (with its
+ *  type's limits and model parameters; a rail ego moves along its track). */
 struct Ego {
   std::string id{"ego"};
   ObjectState state;
@@ -138,7 +149,8 @@ struct StopLine {
   double distance_m{0.0};
 };
 
-/** Another vehicle (a collision object, CO). Simulated with the one-track model. */
+/** Another vehicle (a collision object, CO). Simulated with the one-track model (by its type:
+ *  bicycles with the kinematic single-track model, rail vehicles along their track). */
 struct Vehicle {
   std::string id;
   ObjectState state;
@@ -155,7 +167,11 @@ struct Vehicle {
   std::optional<StopLine> stop_line;
   /** Its type: the class and limits of its hypotheses. */
   VehicleType type;
-  /** The boxes of its body behind this one (length_m x width_m at state), front to back. */
+  /** The boxes of its body behind this one (length_m x width_m at state), front to back, at
+   *  most kMaxCarriages. Each is simulated with the vehicle's speed and acceleration profiles
+   *  along its own lane and checked for collisions like the vehicle's own box; the pair matrix
+   *  and every result know only the vehicle (estimator/ALGORITHM.md, "Long and articulated
+   *  bodies"). */
   std::vector<Carriage> carriages;
 };
 

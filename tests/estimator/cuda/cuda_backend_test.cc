@@ -136,6 +136,53 @@ TEST(CudaBackend, BatchInOneLaunchMatchesTheCpu) {
   }
 }
 
+// Long bodies: the device simulates and checks every carriage; the host folds each such
+// problem's pair matrix and assesses its risk, in a batch beside problems the device assesses.
+Scene WithTrailers(Scene s, RoadUser user) {
+  for (Vehicle& v : s.vehicles) {
+    v.type.road_user = user;
+    for (int k = 0; k < 2; ++k) {
+      Carriage c;
+      c.x_m = v.state.x_m - 0.5 * v.length_m - 0.5 - 5.0 - 10.5 * k;
+      c.y_m = v.state.y_m;
+      c.length_m = 10.0;
+      c.width_m = v.width_m;
+      c.lanes = v.lanes;
+      v.carriages.push_back(c);
+    }
+  }
+  return s;
+}
+
+TEST(CudaBackend, ScenesWithCarriagesInABatchMatchTheCpu) {
+  SKIP_WITHOUT_DEVICE();
+  const std::vector<Scene> scenes{WithTrailers(bench::PaperSceneS1(), RoadUser::kHeavy),
+                                  bench::PaperSceneS2(),
+                                  WithTrailers(bench::PaperSceneS2(), RoadUser::kRail)};
+  EstimatorOptions gpu_opt, cpu_opt;
+  gpu_opt.backend = Backend::kCuda;
+  gpu_opt.keep_pair_matrix = cpu_opt.keep_pair_matrix = true;
+  Estimator gpu(Params{}, gpu_opt), cpu(Params{}, cpu_opt);
+  const std::vector<Result> batch = gpu.EstimateBatch(scenes);
+  ASSERT_EQ(batch.size(), scenes.size());
+  for (size_t k = 0; k < scenes.size(); ++k) {
+    const Result r = cpu.Estimate(scenes[k]);
+    const Result one = gpu.Estimate(scenes[k]);
+    for (const Result* g : {&batch[k], &one}) {
+      EXPECT_NEAR(g->p_collision, r.p_collision, 1e-4) << k;
+      ASSERT_EQ(g->objects.size(), scenes[k].vehicles.size()) << k;
+      for (size_t o = 0; o < r.objects.size(); ++o)
+        EXPECT_NEAR(g->objects[o].contribution, r.objects[o].contribution, 1e-4) << k;
+      ASSERT_EQ(g->first_collision_step.size(), r.first_collision_step.size()) << k;
+      size_t differing = 0;
+      for (size_t j = 0; j < r.first_collision_step.size(); ++j)
+        differing += g->first_collision_step[j] != r.first_collision_step[j];
+      EXPECT_LE(differing, r.first_collision_step.size() / 10000 + 2) << k;
+      EXPECT_EQ(g->counts.carriage_trajectories, r.counts.carriage_trajectories) << k;
+    }
+  }
+}
+
 TEST(CudaBackend, MissingDeviceIsAClearError) {
   std::string why;
   if (CudaUsable(&why)) GTEST_SKIP() << "a device is usable here";

@@ -162,6 +162,58 @@ TEST(CudaKernelBodies, OtherParametersAndDiscriminationScenesMatchTheCpuBackendE
   ExpectBatchSameAsCpu(scenes, "paper-literal", ParamsPreset("paper-literal"));
 }
 
+TEST(CudaKernelBodies, ProblemsWithCarriagesAreFoldedAndAssessedOnTheHostAsTheCpuDoes) {
+  // The CUDA backend's path for long bodies (estimator/ALGORITHM.md "Long and articulated
+  // bodies"): the kernels simulate and check every set, carriages included; the problem's
+  // slice of the pair matrix is then folded and assessed on the host (AssessBodies), in a
+  // batch beside problems assessed by the risk kernels.
+  auto with_trailers = [](Scene s, RoadUser user) {
+    for (Vehicle& v : s.vehicles) {
+      v.type.road_user = user;
+      for (int k = 0; k < 2; ++k) {
+        Carriage c;
+        c.x_m = v.state.x_m - 0.5 * v.length_m - 0.5 - 5.0 - 10.5 * k;
+        c.y_m = v.state.y_m;
+        c.length_m = 10.0;
+        c.width_m = v.width_m;
+        c.lanes = v.lanes;
+        v.carriages.push_back(c);
+      }
+    }
+    return s;
+  };
+  const std::vector<Scene> scenes{with_trailers(bench::PaperSceneS1(), RoadUser::kHeavy),
+                                  bench::PaperSceneS1(),
+                                  with_trailers(bench::PaperSceneS2(), RoadUser::kRail)};
+  const Params params;
+  std::vector<internal::Problem> problems;
+  for (const Scene& scene : scenes) problems.push_back(internal::BuildProblem(scene, params));
+  std::vector<const internal::Problem*> views;
+  for (const internal::Problem& pb : problems) views.push_back(&pb);
+  const Emulated e = RunKernelBodies(views);
+  const cuda::BatchHost& h = e.batch;
+  EstimatorOptions opt;
+  opt.keep_pair_matrix = true;
+  Estimator cpu(params, opt);
+  for (size_t p = 0; p < scenes.size(); ++p) {
+    const Result r = cpu.Estimate(scenes[p]);
+    std::vector<std::int16_t> first(e.first.begin() + h.pair_base[p],
+                                    e.first.begin() + h.pair_base[p + 1]);
+    ASSERT_EQ(problems[p].HasCarriages(), p != 1) << p;
+    Result d;
+    internal::AssessBodies(problems[p], params, &first, 1, &d);
+    EXPECT_TRUE(first == r.first_collision_step) << "problem " << p << ": pair matrices differ";
+    EXPECT_EQ(d.p_collision, r.p_collision) << p;
+    EXPECT_EQ(d.p_reference, r.p_reference) << p;
+    EXPECT_EQ(d.first_collision_pmf, r.first_collision_pmf) << p;
+    ASSERT_EQ(d.objects.size(), r.objects.size()) << p;
+    ASSERT_EQ(d.objects.size(), scenes[p].vehicles.size()) << p;
+    for (size_t o = 0; o < r.objects.size(); ++o)
+      EXPECT_EQ(d.objects[o].contribution, r.objects[o].contribution) << p << " " << o;
+  }
+  EXPECT_GT(problems[0].CoTrajectories(), problems[0].ObjectTrajectories());
+}
+
 TEST(CudaKernelBodies, ProblemOfSkipsEmptyRanges) {
   const long long base[] = {0, 5, 5, 5, 9, 12};  // problems 1 and 2 are empty
   EXPECT_EQ(cuda::ProblemOf(base, 5, 0LL), 0);
