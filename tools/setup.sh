@@ -14,7 +14,7 @@ JOBS=${JOBS:-$(nproc)}
 
 packages=(cmake g++ make libeigen3-dev libboost-program-options-dev libgtest-dev libsqlite3-dev
           sqlite3 sumo sumo-tools libfcl-dev libboost-dev libyaml-cpp-dev nlohmann-json3-dev
-          python3-matplotlib)
+          python3-matplotlib chromium)  # chromium: the campaign report's browser test
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -42,6 +42,8 @@ struct Options {
   std::string preset{"default"};
   bool discrimination{false};
   std::string save_scenes;
+  std::string paths_json;
+  int paths{12};
 };
 
 struct Timing {
@@ -331,6 +333,80 @@ int Compare(const Scene& scene, const Params& params, const Options& opt) {
   return 0;
 }
 
+// One ego hypothesis as JSON: its probabilities and its poses (scene frame, cm).
+std::string HypothesisJson(const EscapeRoute& e, bool reference) {
+  std::ostringstream o;
+  o << std::setprecision(6) << "{\"trajectory\":" << e.ego_trajectory
+    << ",\"probability\":" << e.probability
+    << ",\"collision_probability\":" << e.collision_probability
+    << ",\"reference\":" << (reference ? "true" : "false") << ",\"x\":[";
+  o << std::fixed << std::setprecision(2);
+  for (size_t n = 0; n < e.x_m.size(); ++n) o << (n ? "," : "") << e.x_m[n];
+  o << "],\"y\":[";
+  for (size_t n = 0; n < e.y_m.size(); ++n) o << (n ? "," : "") << e.y_m[n];
+  o << "]}";
+  return o.str();
+}
+
+// --paths-json: one estimate, then the ego's most probable hypotheses and its most probable
+// colliding ones with their poses, the objects' shares and the first-collision times, for a
+// picture of the scene (the campaign report's warning scenes).
+int Paths(const Scene& scene, Params params, const Options& opt) {
+  params.max_escape_routes = 1 << 30;  // every ego hypothesis, re-simulated with its poses
+  EstimatorOptions eopt;
+  eopt.backend = ParseBackend(opt.backend);
+  eopt.threads = opt.threads;
+  Estimator estimator(params, eopt);
+  const Result r = estimator.Estimate(scene);
+  std::vector<const EscapeRoute*> probable, colliding;
+  for (const EscapeRoute& e : r.escape_routes) {
+    probable.push_back(&e);
+    if (e.collision_probability > 0.0) colliding.push_back(&e);
+  }
+  const size_t n = static_cast<size_t>(std::max(0, opt.paths));
+  auto keep = [n](std::vector<const EscapeRoute*>& v, auto weight) {
+    std::stable_sort(v.begin(), v.end(), [&](const EscapeRoute* a, const EscapeRoute* b) {
+      return weight(*a) > weight(*b);
+    });
+    if (v.size() > n) v.resize(n);
+  };
+  keep(probable, [](const EscapeRoute& e) { return e.probability; });
+  keep(colliding, [](const EscapeRoute& e) { return e.probability * e.collision_probability; });
+  std::ostringstream o;
+  o << std::setprecision(8) << "{\"ego\":\"" << JsonEscape(scene.ego.id)
+    << "\",\"p_collision\":" << r.p_collision << ",\"p_reference\":" << r.p_reference
+    << ",\"unavoidability\":" << r.unavoidability << ",\"step_s\":" << params.step_s
+    << ",\"horizon_s\":" << params.horizon_s << ",\"hypotheses\":" << r.counts.ego_trajectories
+    << ",\"objects\":[";
+  for (size_t k = 0; k < r.objects.size(); ++k) {
+    const ObjectResult& ob = r.objects[k];
+    o << (k ? "," : "") << "{\"id\":\"" << JsonEscape(ob.id) << "\",\"kind\":\""
+      << KindName(ob.kind) << "\",\"contribution\":" << ob.contribution
+      << ",\"out_of_reach\":" << (ob.out_of_reach ? "true" : "false") << "}";
+  }
+  o << "],\"first_collision_pmf\":[";
+  for (size_t k = 0; k < r.first_collision_pmf.size(); ++k)
+    o << (k ? "," : "") << r.first_collision_pmf[k];
+  for (const auto& [name, list] :
+       {std::pair<const char*, std::vector<const EscapeRoute*>*>{"most_probable", &probable},
+        {"colliding", &colliding}}) {
+    o << "],\"" << name << "\":[";
+    for (size_t k = 0; k < list->size(); ++k) {
+      const EscapeRoute& e = *(*list)[k];
+      o << (k ? "," : "") << HypothesisJson(e, e.ego_trajectory == r.reference_ego_trajectory);
+    }
+  }
+  o << "]}\n";
+  std::ofstream out(opt.paths_json);
+  out << o.str();
+  if (!out) throw InputError("--paths-json '" + opt.paths_json + "': cannot be written");
+  std::printf(
+      "paths of %s: p_collision %.4f, %zu most probable and %zu colliding hypotheses -> %s\n",
+      scene.ego.id.c_str(), r.p_collision, probable.size(), colliding.size(),
+      opt.paths_json.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -370,7 +446,13 @@ int main(int argc, char** argv) {
       "run the discrimination benchmark: designed scenes labelled safe-close or critical, with "
       "p_cra, p_reference, unavoidability and the best escape route of each")(
       "save-scenes", po::value(&opt.save_scenes),
-      "with --discrimination: also write every scene as a scene file into this folder");
+      "with --discrimination: also write every scene as a scene file into this folder")(
+      "paths-json", po::value(&opt.paths_json),
+      "estimate once and write to FILE (JSON) the ego's most probable hypotheses and its most "
+      "probable colliding ones with their poses (scene frame), the objects' shares and the "
+      "first-collision time distribution (for pictures of a scene; no timing)")(
+      "paths", po::value(&opt.paths)->default_value(opt.paths),
+      "with --paths-json: hypotheses of each kind");
   try {
     po::variables_map vm;
     po::store(po::parse_command_line(argc, argv, desc), vm);
@@ -403,6 +485,7 @@ int main(int argc, char** argv) {
     } else {
       scene = bench::PaperScene(opt.scene);
     }
+    if (!opt.paths_json.empty()) return Paths(scene, params, opt);
     if (opt.compare) return Compare(scene, params, opt);
     if (opt.batch < 0 || opt.batch > 1000000)
       throw InputError("--batch = " + std::to_string(opt.batch) + ": use 1 to 1000000");

@@ -21,8 +21,18 @@ void FindNeighbours(double cell_m, SumoSurroundings* s) {
   centres.reserve(s->objects.size());
   std::unordered_map<unsigned long long, std::vector<int>> grid;
   for (int k = 0; k < static_cast<int>(s->objects.size()); ++k) {
-    centres.push_back(CentreOf(s->objects[k]));
+    const SumoObject& o = s->objects[k];
+    centres.push_back(CentreOf(o));
     grid[key(cell_of(centres[k].x), cell_of(centres[k].y))].push_back(k);
+    // A body longer than a cell is in every cell along it (straight back from its front: a
+    // train's rear carriages may pass an ego far from its front).
+    if (!o.person && o.length_m > cell_m && std::isfinite(centres[k].yaw)) {
+      const double c = std::cos(centres[k].yaw), sn = std::sin(centres[k].yaw);
+      for (double d = 0.0; d <= o.length_m; d += 0.5 * cell_m) {
+        std::vector<int>& in = grid[key(cell_of(o.x_m - c * d), cell_of(o.y_m - sn * d))];
+        if (in.empty() || in.back() != k) in.push_back(k);
+      }
+    }
   }
   for (SumoSurroundings::Ego& e : s->egos) {
     e.nearby.clear();
@@ -37,6 +47,7 @@ void FindNeighbours(double cell_m, SumoSurroundings* s) {
       }
     }
     std::sort(e.nearby.begin(), e.nearby.end());
+    e.nearby.erase(std::unique(e.nearby.begin(), e.nearby.end()), e.nearby.end());
   }
 }
 

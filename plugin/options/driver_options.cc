@@ -32,7 +32,9 @@ std::string WithOptionNames(std::string msg) {
       {"params.profiles", "--profiles"},
       {"params.own_lane_samples", "--own-lane-samples"},
       {"params.neighbour_lane_samples", "--neighbour-lane-samples"},
-      {"options.threads", "--threads"}};
+      {"options.threads", "--threads"},
+      {"backend = ", "--backend "},
+      {"preset = ", "--preset "}};
   for (const auto& [field, option] : names) {
     for (size_t at = msg.find(field); at != std::string::npos; at = msg.find(field, at)) {
       msg.replace(at, std::strlen(field), option);
@@ -107,7 +109,13 @@ void SumoConfigRelativeToConfigFile(const OptionTable& table, const po::variable
 }
 
 void CheckSimulation(RunConfig* run, const RawOptions& raw, const po::variables_map& vm) {
-  for (const std::string& e : raw.events) run->events.push_back(ParseEvent(e));
+  for (const std::string& e : raw.events) {
+    try {
+      run->events.push_back(ParseEvent(e));
+    } catch (const std::invalid_argument& err) {  // "event '...': ...": name the option
+      Bad("--" + std::string(err.what()));
+    }
+  }
   run->progress = !raw.no_progress;
   if (!vm["end"].defaulted() && !(std::isfinite(run->end_time_s) && run->end_time_s >= 0.0)) {
     Bad("--end " + Number(run->end_time_s) + ": must be a finite time >= 0 s");
@@ -123,7 +131,7 @@ void CheckSimulation(RunConfig* run, const RawOptions& raw, const po::variables_
   if (!run->expect_partner.empty() && run->expect != "collision")
     Bad("--expect-partner needs --expect collision");
   if (!std::isfinite(run->quiet_until_s) || run->quiet_until_s < 0.0)
-    Bad("--quiet-until must be a finite time >= 0 s");
+    Bad("--quiet-until " + Number(run->quiet_until_s) + ": must be a finite time >= 0 s");
   if (run->sumo_config.empty() && run->connect.empty())
     Bad("no simulation: give -c/--sumo-config FILE (or --connect HOST:PORT)");
   if (!run->sumo_config.empty() && run->connect.empty() && !fs::exists(run->sumo_config))
@@ -143,9 +151,14 @@ void CheckSimulation(RunConfig* run, const RawOptions& raw, const po::variables_
 
 // The preset, with the estimator options given explicitly on top of it.
 void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOptions* o) {
-  o->estimator.backend = ParseBackend(raw.backend);
+  Params p;
+  try {  // InputError names the accepted values, in the estimator's terms
+    o->estimator.backend = ParseBackend(raw.backend);
+    p = ParamsPreset(raw.preset);
+  } catch (const std::invalid_argument& e) {
+    Bad(WithOptionNames(e.what()));
+  }
   o->estimator.reach_shortcut = !raw.no_shortcut;
-  Params p = ParamsPreset(raw.preset);  // InputError names the accepted presets
   auto given = [&](const char* name) { return vm.count(name) && !vm[name].defaulted(); };
   if (given("profiles")) p.profiles = o->params.profiles;
   if (given("own-lane-samples")) p.own_lane_samples = o->params.own_lane_samples;
@@ -159,7 +172,8 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_road_model) p.road_model = false;
   if (raw.no_car_following) p.expected_accel_reference = false;
   o->params = p;
-  if (o->estimator.threads < 0) Bad("--threads must be >= 0");
+  if (o->estimator.threads < 0)
+    Bad("--threads " + std::to_string(o->estimator.threads) + ": must be >= 0 (0: all cores)");
   try {
     ValidateParams(o->params);
   } catch (const std::invalid_argument& e) {  // InputError names the Params field
@@ -193,14 +207,21 @@ void Acting(const RawOptions& raw, ActConfig* act) {
   Threshold("--warn-threshold", w.threshold);
   Threshold("--brake-threshold", p.engage_threshold);
   if (w.release < 0.0) w.release = 0.8 * w.threshold;
-  if (w.release > w.threshold) Bad("--warn-release must not exceed --warn-threshold");
+  if (w.release > w.threshold) {
+    Bad("--warn-release " + Number(w.release) + ": must not exceed --warn-threshold " +
+        Number(w.threshold));
+  }
   if (!(w.release_after_s >= 0.0) || !std::isfinite(w.release_after_s))
-    Bad("--warn-release-after must be >= 0 s");
+    Bad("--warn-release-after " + Number(w.release_after_s) + ": must be a finite time >= 0 s");
   if (p.release_threshold < 0.0) p.release_threshold = 0.5 * p.engage_threshold;
-  if (p.release_threshold > p.engage_threshold)
-    Bad("--brake-release must not exceed --brake-threshold");
-  if (!(p.min_hold_s >= 0.0) || !(p.release_after_s >= 0.0))
-    Bad("--act-hold and --act-release-after must be >= 0 s");
+  if (p.release_threshold > p.engage_threshold) {
+    Bad("--brake-release " + Number(p.release_threshold) + ": must not exceed --brake-threshold " +
+        Number(p.engage_threshold));
+  }
+  if (!(p.min_hold_s >= 0.0) || !std::isfinite(p.min_hold_s))
+    Bad("--act-hold " + Number(p.min_hold_s) + ": must be a finite time >= 0 s");
+  if (!(p.release_after_s >= 0.0) || !std::isfinite(p.release_after_s))
+    Bad("--act-release-after " + Number(p.release_after_s) + ": must be a finite time >= 0 s");
 }
 
 // What the other stages take from the estimator's final parameters; the observe checks.
@@ -208,13 +229,17 @@ void Derive(DriverOptions* o) {
   ObserveConfig& observe = o->observe;
   if (observe.egos.empty() && !observe.all_vehicles)
     Bad("no ego: give --ego ID (repeatable) or --all-vehicles");
-  if (!(observe.range_m > 0.0)) Bad("--range must be > 0");
+  if (!(observe.range_m > 0.0) || !std::isfinite(observe.range_m))
+    Bad("--range " + Number(observe.range_m) + ": must be a finite distance > 0 m");
   observe.attached = !o->run.connect.empty();
   SceneConfig& scenes = o->scenes;
   scenes.range_m = observe.range_m;
   scenes.horizon_s = o->params.horizon_s;
   scenes.max_accel_mps2 = o->params.vehicle_accel_max_mps2;
   scenes.lane_sampling = LaneSamplingFor(o->params);
+  scenes.friction = o->params.friction;
+  scenes.max_steer_rad = o->params.max_steer_rad;
+  scenes.all_vehicles = observe.all_vehicles;
   o->act.closed_loop.brake.latency_s = o->params.latency_s;  // the escape routes' braking
   o->act.closed_loop.brake.jerk_mps3 = o->params.jerk_mps3;
 }
@@ -240,8 +265,17 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
   SumoConfigRelativeToConfigFile(table, vm, &o.run);
   CheckSimulation(&o.run, table.raw, vm);
   Acting(table.raw, &o.act);
+  if (!table.raw.ego_classes.empty()) {
+    if (!o.observe.all_vehicles) Bad("--ego-classes needs --all-vehicles (named egos are egos)");
+    o.scenes.ego_classes = ParseEgoClasses(table.raw.ego_classes);
+  }
   Estimation(table.raw, vm, &o);
   Derive(&o);
+  if (vm.count("check-options")) {
+    // A dry check (criticality-campaign plan): everything a run parses, then no run.
+    std::cout << "sumo-criticality: options ok\n";
+    out.exit_now = true;
+  }
   return out;
 }
 

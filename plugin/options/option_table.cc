@@ -34,6 +34,10 @@ void OptionTable::General() {
   po::options_description g("General");
   g.add_options()("help,h", "show this help and exit")(
       "version", "show the version (and the SUMO it was built for) and exit")(
+      "check-options",
+      "check every option as a run would (values, the --config file, that the SUMO "
+      "configuration exists) and exit: 0 and 'options ok' when a run would start with them, "
+      "else the run's error and exit code; SUMO's own options (after '--') are not checked")(
       "config", po::value(&raw.config),
       "read further options from FILE (same names, one 'name = value' per line; a scenario's "
       "scenario.cfg). Paths in it are relative to its folder. Command-line values win.");
@@ -49,7 +53,11 @@ void OptionTable::Simulation(DriverOptions* o) {
       "through libtraci instead of running SUMO in-process")(
       "ego", po::value(&o->observe.egos)->composing(),
       "vehicle ID whose criticality is estimated (repeatable)")(
-      "all-vehicles", po::bool_switch(&o->observe.all_vehicles), "every vehicle present is an ego")(
+      "all-vehicles", po::bool_switch(&o->observe.all_vehicles),
+      "every vehicle present is an ego (but parked ones; of the --ego-classes)")(
+      "ego-classes", po::value(&raw.ego_classes),
+      "with --all-vehicles, the SUMO vClasses that are egos, comma-separated, or all (default: "
+      "every road user but rail: cars, trucks, buses, motorcycles, bicycles, ...)")(
       "event", po::value(&raw.events)->composing(),
       "scripted event 'TIME TARGET ACTION ARGS' (repeatable; usually in a scenario.cfg). ACTION: "
       "speed-mode VEH BITS | lane-change-mode VEH BITS | speed VEH MPS | slow-down VEH MPS SEC | "

@@ -19,6 +19,7 @@ struct RawOptions {
   std::string expect;
   std::string preset{"default"};
   std::vector<std::string> events;
+  std::string ego_classes;  ///< --ego-classes ("": the default)
   bool no_lateral_controller{false}, no_road_model{false}, no_car_following{false};
   bool no_progress{false}, no_shortcut{false};
 };

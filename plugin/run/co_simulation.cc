@@ -150,7 +150,8 @@ class CoSimulation {
     const double sumo_end = world_->EndTime();
     end_option_ = o_.run.end_time_s >= 0.0 && (sumo_end < 0.0 || o_.run.end_time_s < sumo_end);
     end_ = end_option_ ? o_.run.end_time_s : sumo_end;
-    tty_ = o_.run.progress && isatty(2);
+    if (o_.run.progress && isatty(2)) progress_ = std::make_unique<ProgressLine>(true);
+    begin_s_ = world_->Time();
   }
 
   // Whether the run ends before the next step; sets the summary's end reason.
@@ -172,6 +173,7 @@ class CoSimulation {
     script_->ApplyDue(world_->Time(), dt_);
     StepClock clock;
     clock.t[0] = Clock::now();
+    if (progress_) progress_->Hold();
     world_->Step();
     stepped_ = true;
     clock.t[1] = Clock::now();
@@ -190,7 +192,8 @@ class CoSimulation {
     clock.t[6] = Clock::now();
     clock.Into(&sum_.times);
     Account(obs, acted);
-    Progress(clock.t[6], batch.scenes.size());
+    last_egos_ = batch.scenes.size();
+    Progress(clock.t[6], last_egos_);
   }
 
   StepTimeRow TimeRow(const StepClock& clock, const ActOutcome& acted) {
@@ -226,6 +229,9 @@ class CoSimulation {
     }
     for (const EgoStep& s : acted.steps) {
       ++sum_.estimates;
+      // Exposure: each estimate stands for one step of its ego on the road.
+      sum_.vehicle_hours += dt_ / 3600.0;
+      sum_.vehicle_km += s.speed_mps * dt_ / 1000.0;
       sum_.shortcut_estimates += s.shortcut ? 1 : 0;
       sum_.objects_out_of_reach += s.objects - s.objects_in_reach;
       sum_.estimator_ms_sum += s.estimator_ms;
@@ -235,17 +241,31 @@ class CoSimulation {
     sum_.actions += static_cast<long long>(acted.actions.size());
   }
 
-  void Progress(Clock::time_point now, size_t egos) {
-    if (!tty_ || now - last_print_ < std::chrono::milliseconds(500)) return;
-    std::fprintf(
-        stderr, "\r  t = %.1f s  %.0f steps/s  egos %zu  warnings %lld  collisions %lld   ", t_,
-        sum_.steps / std::max(Seconds(now - wall0_), 1e-9), egos, sum_.warnings, sum_.collisions);
+  // The progress line, at most every 0.5 s (at once after SUMO wrote something: the line was
+  // cleared for it).
+  void Progress(Clock::time_point now, size_t egos, bool force = false) {
+    if (!progress_) return;
+    const bool wrote = progress_->Release();
+    if (!force && !wrote && now - last_print_ < std::chrono::milliseconds(500)) return;
+    ProgressState p;
+    p.time_s = t_;
+    p.begin_s = begin_s_;
+    p.end_s = end_;
+    p.wall_s = Seconds(now - wall0_);
+    p.steps = sum_.steps;
+    p.egos = static_cast<long long>(egos);
+    p.warnings = sum_.warnings;
+    p.collisions = sum_.collisions;
+    progress_->Show(ProgressText(p));
     last_print_ = now;
   }
 
   // The run ended without an error (SUMO, --end, the egos, or a signal).
   void End() {
-    if (tty_) std::fprintf(stderr, "\n");
+    if (progress_) {
+      Progress(Clock::now(), last_egos_, true);  // the final state, then a line of its own
+      progress_->End();
+    }
     if (o_.run.expect == "collision" && !sum_.expectation_met) sum_.expectation_met = false;
     if (o_.run.expect == "no-collision") sum_.expectation_met = sum_.ego_collisions == 0;
     for (const std::string& e : script_->Pending()) {
@@ -268,7 +288,10 @@ class CoSimulation {
   // The summary's last fields, and the database's end (or no database at all when the run
   // failed before its first step).
   void Finish(const std::string& status, const std::string& error) {
-    if (tty_ && status == "failed") std::fprintf(stderr, "\n");
+    if (progress_) {
+      progress_->Release();
+      progress_->End();
+    }
     sum_.status = status;
     sum_.error = error;
     sum_.sim_time_s = t_;
@@ -304,8 +327,10 @@ class CoSimulation {
   std::unique_ptr<ActStage> act_;
   std::unique_ptr<RecordStage> record_;
   std::unique_ptr<EventScript> script_;
-  double dt_{0.1}, t_{0.0}, end_{-1.0};
-  bool end_option_{false}, tty_{false};
+  double dt_{0.1}, t_{0.0}, end_{-1.0}, begin_s_{0.0};
+  bool end_option_{false};
+  std::unique_ptr<ProgressLine> progress_;  ///< on a terminal only
+  size_t last_egos_{0};
   bool stepped_{false};  ///< a step was made: from then on the database is kept
   Clock::time_point last_print_{}, last_rss_{};
   double rss_mb_{0.0};

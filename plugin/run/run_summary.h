@@ -1,6 +1,7 @@
 #pragma once
 // The one-line JSON summary that ends standard output on every exit of a run, failures
 // included (keys in plugin/README.md), and in the database's runs.summary.
+#include <cstdio>
 #include <optional>
 #include <string>
 
@@ -25,6 +26,11 @@ struct RunSummary {
   long long steps{0};
   long long egos{0};
   long long estimates{0};
+  /** Exposure of the estimation: ego estimates x step length (hours), and the distance the
+   *  estimated egos covered (speed x step length, km). Rates per vehicle-hour and per
+   *  vehicle-km divide by these. */
+  double vehicle_hours{0.0};
+  double vehicle_km{0.0};
   long long shortcut_estimates{0};  ///< answered p = 0 without trajectories (no object in reach)
   long long objects_out_of_reach{0};
   long long invalid_objects{0};  ///< object reads left out of scenes (NaN values)
@@ -46,5 +52,45 @@ struct RunSummary {
 
 /** One line of JSON, no newline. */
 std::string SummaryJson(const RunSummary& s);
+
+/** What the progress line on a terminal shows while a run goes on. */
+struct ProgressState {
+  double time_s{0.0};   ///< the last step's stamp
+  double begin_s{0.0};  ///< the simulation's time when the run started
+  double end_s{-1.0};   ///< when the run ends (--end or SUMO's end time); < 0: not known
+  double wall_s{0.0};   ///< wall time since the run started
+  long long steps{0}, egos{0}, warnings{0}, collisions{0};
+};
+
+/** The progress line on standard error (a terminal). While it shows, whatever is written to
+ *  standard error between Hold() and Release() (a step: SUMO's warnings, the stages' notes) goes
+ *  to a temporary file and is written out at Release(), the line cleared first, so that SUMO's
+ *  messages stand on lines of their own instead of running into it; Show() draws the line
+ *  again. Off (`on` false, or no temporary file): every call does nothing. */
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool on);
+  ~ProgressLine();  ///< releases what is held
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+  bool on() const { return on_; }
+  void Hold();
+  /** True when something had been written meanwhile (then Show() at once). */
+  bool Release();
+  void Show(const std::string& text);
+  /** The last line stays; what follows starts below it. */
+  void End();
+
+ private:
+  bool on_{false}, holding_{false}, shown_{false};
+  std::FILE* held_{nullptr};
+  int terminal_{-1};
+};
+
+/** "t 12.3 / 120 s  10 %  ETA 1:42  34 steps/s  egos 3  warnings 1  collisions 0": simulated
+ *  time, end time, share done and the time left at the pace so far (no end time: simulated
+ *  time and pace only). One line, no line break. */
+std::string ProgressText(const ProgressState& p);
 
 }  // namespace criticality::plugin

@@ -57,10 +57,12 @@ double StraightBeforeTurn(const LaneCorridor& c, double reach_m) {
   return straight >= kMinStraightM && straight <= reach_m - kMinTurnM ? straight : 0.0;
 }
 
-LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
-                      const LaneSampling& sampling) {
-  if (c.centre.size() < 2 || !(reach_m > 0.0)) return LaneSet{};
-  reach_m = SampledReach(c, reach_m, X_WV.yaw, sampling.turn_lane_frame);
+namespace {
+
+// The lanes sampled over exactly `reach_m` (see SampleLaneSet); nullopt when the own lane's
+// samples cannot be fitted in the frame the estimator will fit them in.
+std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
+                                  const LaneSampling& sampling) {
   const double straight = sampling.straight_before_turn ? StraightBeforeTurn(c, reach_m) : 0.0;
   const double middle = straight > 0.0 ? straight : 0.5 * reach_m;
   const double s[3] = {c.position_m, c.position_m + middle, c.position_m + reach_m};
@@ -87,8 +89,8 @@ LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
   }
   // The estimator needs every lane's samples to run forward in the vehicle's frame with the
   // left divider left of the right one. Offsetting a tight turn's centre line can break that
-  // (the dividers cross): such a neighbour is left out; such an own lane makes the whole set
-  // unusable, and the estimator then uses a virtual lane.
+  // (the dividers cross), and a parabola y(x) cannot end across the heading: such a neighbour
+  // is left out; such an own lane makes the whole set unusable at this reach.
   // Checked in the frame the estimator will fit them in (turned along a junction turn's chord).
   Params frame_params;
   frame_params.turn_lane_frame = sampling.turn_lane_frame;
@@ -110,10 +112,30 @@ LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
     // The estimator's own test (fit, width at the observer).
     return LaneProblem(*lane, frame).empty();
   };
-  if (!usable(set.own)) return LaneSet{};
+  if (!usable(set.own)) return std::nullopt;
   if (set.left && !usable(set.left)) set.left.reset();
   if (set.right && !usable(set.right)) set.right.reset();
   return set;
+}
+
+}  // namespace
+
+LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
+                      const LaneSampling& sampling) {
+  if (c.centre.size() < 2 || !(reach_m > 0.0)) return LaneSet{};
+  // As far as LaneSampling says; where the own lane cannot be fitted that far (a junction turn
+  // ending across the heading whose chord the estimator does not turn its frame for), as far
+  // as the paper's frame can follow the turn, then shorter: a lane that follows the road part
+  // of the way is better than none (without lanes a vehicle is predicted straight on, through
+  // the junction it is turning in).
+  const double first = SampledReach(c, reach_m, X_WV.yaw, sampling.turn_lane_frame);
+  if (const auto set = SampleOver(c, first, X_WV, sampling)) return *set;
+  double reach = SampledReach(c, reach_m, X_WV.yaw, false);
+  if (reach >= first) reach = 0.5 * first;
+  for (; reach >= kMinSampledReachM; reach *= 0.5) {
+    if (const auto set = SampleOver(c, reach, X_WV, sampling)) return *set;
+  }
+  return LaneSet{};
 }
 
 }  // namespace criticality::plugin

@@ -87,10 +87,12 @@ double StraightBeforeTurn(const LaneCorridor& corridor, double reach_m);
 /** Samples the corridor at s = position, position + reach/2, position + reach (reach as
  *  SampledReach shortens it; the middle where StraightBeforeTurn says the straight ends, as
  *  LaneSampling::straight_before_turn asks) and returns the lanes in the vehicle's local frame
- *  X_WV. Returns
- *  an empty LaneSet (the estimator then uses a virtual lane) when the corridor has fewer than
- *  2 points or its samples do not run forward along the frame the estimator fits them in
- *  (e.g. the vehicle stands across its lane). */
+ *  X_WV. Where the own lane's samples cannot be fitted that far (they do not run forward along
+ *  the frame the estimator fits them in: a junction turn ending across the heading whose chord
+ *  turns less than turn_lane_frame_min_rad), the reach is shortened: to where the paper's frame
+ *  stops (kPaperFrameMaxTurnRad), then halved, down to kMinSampledReachM. Returns an empty
+ *  LaneSet (the estimator then uses a virtual lane) when the corridor has fewer than 2 points
+ *  or no reach gives a usable own lane (e.g. the vehicle stands across its lane). */
 LaneSet SampleLaneSet(const LaneCorridor& corridor, double reach_m, const Pose2& X_WV,
                       const LaneSampling& sampling = LaneSampling{});
 

@@ -5,12 +5,7 @@
 #include "plugin/network/polyline.h"
 
 namespace criticality::plugin {
-namespace {
 
-// The corridor's centre line from the vehicle's lane on along its route, as far as it can get
-// within `reach` (at most 8 lanes on, and at least out of the junction it is in). Sets
-// *beyond_junction to the first normal lane after an internal one, and *route_end when the
-// route ends within the corridor.
 void FollowRoute(const VehicleOnLane& v, double reach, RoadNetwork* network, LaneCorridor* c,
                  std::string* beyond_junction, std::optional<double>* route_end) {
   std::string current = v.lane;
@@ -38,6 +33,8 @@ void FollowRoute(const VehicleOnLane& v, double reach, RoadNetwork* network, Lan
     current = next;
   }
 }
+
+namespace {
 
 // The neighbours as the vehicle sees them, from `reference` (its lane, or inside a junction
 // the lane it drives onto).
@@ -73,6 +70,8 @@ ObjectLanes LanesOf(const VehicleOnLane& v, const SceneConfig& config, double st
   FollowRoute(v, reach, network, &c, &beyond_junction, &out.route_end_m);
   out.lane_yaw_rate_radps =
       LaneYawRate(c, v.speed_mps, std::fmax(1.0, 0.5 * v.speed_mps * step_s));
+  out.smooth_lane_yaw_rate_radps =
+      LaneYawRate(c, v.speed_mps, std::fmax(kCornerWindowM, 0.5 * v.speed_mps * step_s));
   const std::string reference = IsInternal(v.lane) ? beyond_junction : v.lane;
   if (!reference.empty()) Neighbours(v, reference, network, counter_lanes, &c);
   out.lanes = SampleLaneSet(c, reach, v.centre, config.lane_sampling);

@@ -34,13 +34,28 @@ struct VehicleOnLane {
   std::string vehicle_class;
 };
 
+/** See ObjectLanes::smooth_lane_yaw_rate_radps: netconvert's internal lanes turn 20-30 degrees
+ *  at each corner, a few metres apart in a junction turn. */
+inline constexpr double kCornerWindowM = 3.0;
+
 struct ObjectLanes {
   LaneSet lanes;
   std::optional<double> route_end_m;  ///< ObjectState::route_end_m
   /** The yaw rate of following the corridor at its speed (LaneYawRate over half the distance
    *  of one step, at least 1 m each way). */
   double lane_yaw_rate_radps{0.0};
+  /** The same over at least kCornerWindowM each way: SUMO's lane shapes in a junction are a
+   *  few straight pieces, and a vehicle's heading jumps at their corners; this yaw rate
+   *  averages over the corners around it. */
+  double smooth_lane_yaw_rate_radps{0.0};
 };
+
+/** Extends the corridor's centre line (starting with the vehicle's lane) along its route, as far
+ *  as it can get within `reach` of the corridor's position (at most 8 lanes on, and at least out
+ *  of the junction it is in). Sets *beyond_junction to the first normal lane after an internal
+ *  one, and *route_end to how far its front still goes when the route ends within the corridor. */
+void FollowRoute(const VehicleOnLane& v, double reach, RoadNetwork* network, LaneCorridor* c,
+                 std::string* beyond_junction, std::optional<double>* route_end);
 
 /** The vehicle's lanes, route end and lane yaw rate; `step_s` is the simulation's step. */
 ObjectLanes LanesOf(const VehicleOnLane& v, const SceneConfig& config, double step_s,

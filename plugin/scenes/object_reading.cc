@@ -3,12 +3,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "plugin/network/polyline.h"
+#include "plugin/scenes/carriages.h"
 #include "plugin/scenes/footway.h"
+#include "plugin/scenes/road_users.h"
 #include "plugin/scenes/stop_lines.h"
 #include "plugin/sumo/sumo_conventions.h"
 
 namespace criticality::plugin {
 namespace {
+
+// SUMO's stop state bits (getStopState).
+constexpr int kStopped = 1;
+constexpr int kParking = 2;
 
 // SUMO's speed, never negative (NaN passed on).
 double Speed(double v) { return std::isnan(v) ? v : std::max(0.0, v); }
@@ -64,10 +71,19 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.id = o.id;
   s.vehicle_class = o.vehicle_class;
   s.vehicle_type = o.vehicle_type;
-  s.length_m = o.length_m;
+  const std::optional<RoadUser> road_user = RoadUserOf(o.vehicle_class);
+  s.not_a_road_user = !road_user;
+  const VehicleTypeReport& type = traffic_->TypeOf(o.vehicle_type);
+  s.type = TypeFrom(type, road_user.value_or(RoadUser::kCar));
+  s.stopped = (o.stop_state & kStopped) != 0;
+  s.parked = (o.stop_state & kParking) != 0;
+  // A long body: its first box is the vehicle, the rest carriages behind it (carriages.h).
+  const BodyPlan body = o.lane.empty() ? BodyPlan{o.length_m, {}, 0.0}
+                                       : PlanBody(o.length_m, o.width_m, type);
+  s.length_m = body.head_length_m;
   s.width_m = o.width_m;
   if (o.height_m > 0.0) s.height_m = o.height_m;
-  const Pose2 c = FrontBumperToCentre(o.x_m, o.y_m, o.angle_deg, o.length_m);
+  const Pose2 c = FrontBumperToCentre(o.x_m, o.y_m, o.angle_deg, s.length_m);
   s.state.x_m = c.x;
   s.state.y_m = c.y;
   s.state.yaw_rad = c.yaw;
@@ -85,12 +101,13 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.lane = o.lane;
   if (s.lane.empty()) return s;
   s.edge = network_->Lane(s.lane).edge;
+  if (s.parked) s.off_road = OffItsLane(o);
   s.leader = LeaderOf(o.id, s.state.speed_mps);  // expected_accel_mps2: ExpectCarFollowing
   if (!Finite(s.state)) return s;
   VehicleOnLane v;
   v.centre = c;
   v.speed_mps = s.state.speed_mps;
-  v.length_m = o.length_m;
+  v.length_m = s.length_m;
   v.lane = o.lane;
   v.lane_position_m = o.lane_position_m;
   v.lane_index = o.lane_index;
@@ -102,7 +119,41 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.state.route_end_m = lanes.route_end_m;
   if (step_s_ > kLongStepS) s.state.yaw_rate_radps = lanes.lane_yaw_rate_radps;
   s.stop_line = StopLineOf(v, o.id, config_, network_, traffic_);
+  s.carriages = PlaceCarriages(body, v, o.width_m, config_, step_s_, network_);
+  Plausible(lanes.smooth_lane_yaw_rate_radps, &s);
   return s;
+}
+
+bool ObjectReader::OffItsLane(const SumoObject& o) {
+  const LaneInfo& lane = network_->Lane(o.lane);
+  const Point2 on = PointAlong(lane.shape, o.lane_position_m, nullptr);
+  return std::hypot(o.x_m - on.x, o.y_m - on.y) > 0.5 * lane.width_m;
+}
+
+void ObjectReader::Plausible(double lane_yaw_rate, ObjectSnapshot* s) {
+  ObjectState& st = s->state;
+  bool changed = false;
+  // The yaw rate a vehicle can turn at: within the friction circle, v r <= mu g. SUMO's heading
+  // jumps at the corners of a junction's internal lane (27 degrees in one 0.1 s step at
+  // 5.8 m/s: 4.8 rad/s, 27 m/s^2 of lateral acceleration); the vehicle follows its lane there,
+  // so the lane's yaw rate (over the corners around it) replaces a yaw rate beyond grip. A
+  // tight turn a vehicle really drives (SUMO's right turns: 1.3 rad/s at 4.3 m/s) stays.
+  const double v = st.speed_mps;
+  const double r_max = config_.friction * 9.80665 / std::fmax(v, 0.1);
+  if (std::fabs(st.yaw_rate_radps) > r_max) {
+    const double lane = s->lanes.own ? lane_yaw_rate : 0.0;
+    st.yaw_rate_radps = std::clamp(lane, -r_max, r_max);
+    changed = true;
+  }
+  // Accelerations its type can drive: SUMO reports a speed forced by a script (or a stop in a
+  // collision) as the acceleration of one step.
+  const double lo = -s->type.emergency_decel_mps2.value_or(9.0);
+  const double hi = s->type.accel_mps2.value_or(9.7);
+  if (st.accel_mps2 < lo || st.accel_mps2 > hi) {
+    st.accel_mps2 = std::clamp(st.accel_mps2, lo, hi);
+    changed = true;
+  }
+  conditioned_ += changed ? 1 : 0;
 }
 
 std::optional<Leader> ObjectReader::LeaderOf(const std::string& id, double speed) {

@@ -3,10 +3,12 @@
 // (plugin/sumo/sumo_conventions.h), its yaw rate (SUMO has no getter: the heading change since
 // the previous step, or with steps longer than kLongStepS the yaw rate of following its lane),
 // and for a vehicle on a lane its lanes from its own view (object_lanes.h), its stop line
-// (stop_lines.h) and its leader (car_following.h: three SUMO questions per moving vehicle); for a
-// walking person whether it keeps to the footway (footway.h). What each driver is then expected
-// to do is set once the whole step is read (expected_accel.h). SUMO's values are passed on as
-// they came, NaN included: scene building leaves out what the estimator cannot use.
+// (stop_lines.h), its leader (car_following.h: three SUMO questions per moving vehicle), its type
+// (road_users.h), the carriages of a long body (carriages.h), whether it is stopped or parked;
+// for a walking person whether it keeps to the footway (footway.h). What each driver is then
+// expected to do is set once the whole step is read (expected_accel.h). A state no vehicle of
+// its kind can be in is made plausible and counted (Plausible); values that are not numbers
+// (NaN) are passed on: scene building leaves out what the estimator cannot use.
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -30,6 +32,9 @@ class ObjectReader {
   std::vector<ObjectSnapshot> Read(const std::vector<SumoObject>& objects, double sumo_time_s);
   /** A vehicle left the simulation: its heading is no longer remembered. */
   void Forget(const std::string& id) { last_yaw_.erase(id); }
+  /** Object reads whose state was made plausible (a yaw rate or an acceleration no vehicle of
+   *  its kind can have), so far. */
+  long long conditioned() const { return conditioned_; }
 
  private:
   ObjectSnapshot Vehicle(const SumoObject& o, double sumo_time_s);
@@ -37,6 +42,12 @@ class ObjectReader {
   /** The vehicle ahead that its driver is expected to follow; nullopt when it stands still
    *  itself, nothing is within LeaderLookAhead, or SUMO's values are not finite. */
   std::optional<Leader> LeaderOf(const std::string& id, double speed);
+  /** A parked vehicle beside its lane: its position is more than half a lane width off the
+   *  lane's centre line (a parking area beside the road). */
+  bool OffItsLane(const SumoObject& o);
+  /** Plausible states: a yaw rate within grip (the lane's where SUMO's heading jumped), an
+   *  acceleration within the type's limits; counted. */
+  void Plausible(double lane_yaw_rate, ObjectSnapshot* s);
 
   SceneConfig config_;
   double step_s_;
@@ -44,6 +55,7 @@ class ObjectReader {
   TrafficView* traffic_;
   CounterLanes counter_lanes_;
   std::unordered_map<std::string, std::pair<double, double>> last_yaw_;  ///< id -> (time, yaw)
+  long long conditioned_{0};
 };
 
 }  // namespace criticality::plugin

@@ -5,6 +5,7 @@
 // a walker keeps to the footway). Plain data, no SUMO types.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "criticality/scene.h"
 #include "plugin/scenes/car_following.h"
@@ -35,6 +36,19 @@ struct ObjectSnapshot {
   /** A person's walk goes on along the footway (plugin/scenes/footway.h,
    *  Pedestrian::stays_on_footway). */
   bool stays_on_footway{false};
+  /** A vehicle's type for the estimator: its road user class and SUMO's limits. */
+  VehicleType type;
+  /** The boxes of a long body behind this one (plugin/scenes/carriages.h); length_m is the
+   *  first box's. */
+  std::vector<Carriage> carriages;
+  /** SUMO's stop state: stopped (at a stop, a bus stop, in its lane) and parked (a parking
+   *  stop); off_road: parked beside its lane (in a parking area), where it is nobody's
+   *  obstacle. A parked vehicle is no ego; one off the road is no object either. */
+  bool stopped{false};
+  bool parked{false};
+  bool off_road{false};
+  /** Its vClass is no road user (a ship, an aircraft): left out of every scene. */
+  bool not_a_road_user{false};
   std::string vehicle_class;  ///< SUMO's vClass ("pedestrian" for persons)
   std::string vehicle_type;   ///< SUMO's vType ID ("" for persons)
   std::string lane;  ///< SUMO lane ID ("" when not on a lane)

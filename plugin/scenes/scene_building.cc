@@ -19,6 +19,18 @@ bool LaneSetFinite(const LaneSet& set) {
   return true;
 }
 
+// Whether the centre of any box of o's body lies within range_m of the ego's centre.
+bool InRange(const ObjectSnapshot& o, const ObjectSnapshot& ego, double range_m) {
+  auto near = [&](double x, double y) {
+    return std::hypot(x - ego.state.x_m, y - ego.state.y_m) <= range_m;
+  };
+  if (near(o.state.x_m, o.state.y_m)) return true;
+  for (const Carriage& c : o.carriages) {
+    if (near(c.x_m, c.y_m)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 std::string InvalidValues(const ObjectSnapshot& o) {
@@ -43,6 +55,11 @@ std::string InvalidValues(const ObjectSnapshot& o) {
     return msg.str();
   }
   if (!LaneSetFinite(o.lanes)) return "lanes with non-finite points";
+  for (const Carriage& c : o.carriages) {
+    if (!std::isfinite(c.x_m) || !std::isfinite(c.y_m) || !std::isfinite(c.yaw_rad) ||
+        !std::isfinite(c.yaw_rate_radps) || (c.lanes && !LaneSetFinite(*c.lanes)))
+      return "a carriage with non-finite values";
+  }
   if (o.stop_line && !(o.stop_line->distance_m >= 0.0 && std::isfinite(o.stop_line->distance_m))) {
     std::ostringstream msg;
     msg << "stop_line.distance_m = " << o.stop_line->distance_m;
@@ -60,17 +77,19 @@ Scene BuildScene(const ObjectSnapshot& ego, const std::vector<const ObjectSnapsh
   scene.ego.width_m = ego.width_m;
   scene.ego.height_m = ego.height_m;
   scene.ego.lanes = ego.lanes;
+  scene.ego.type = ego.type;
   std::vector<const ObjectSnapshot*> sorted = nearby;
   std::sort(sorted.begin(), sorted.end(),
             [](const ObjectSnapshot* a, const ObjectSnapshot* b) { return a->id < b->id; });
   for (const ObjectSnapshot* o : sorted) {
     if (o->id == ego.id && !o->person) continue;
+    if (o->not_a_road_user || o->off_road) continue;  // nobody's obstacle (counted when read)
     const std::string why = InvalidValues(*o);
     if (!why.empty()) {
       if (left_out) left_out->push_back(LeftOutObject{o->id, o->person, why});
       continue;
     }
-    if (std::hypot(o->state.x_m - ego.state.x_m, o->state.y_m - ego.state.y_m) > range_m) continue;
+    if (!InRange(*o, ego, range_m)) continue;
     if (o->person) {
       Pedestrian p;
       p.id = o->id;
@@ -88,6 +107,8 @@ Scene BuildScene(const ObjectSnapshot& ego, const std::vector<const ObjectSnapsh
       v.height_m = o->height_m;
       v.lanes = o->lanes;
       v.stop_line = o->stop_line;
+      v.type = o->type;
+      v.carriages = o->carriages;
       scene.vehicles.push_back(std::move(v));
     }
   }

@@ -20,10 +20,11 @@ struct LeftOutObject {
   std::string why;  ///< InvalidValues()
 };
 
-/** The scene of `ego` (which must be valid): every valid object of `nearby` whose centre lies
- *  within `range_m` of the ego's, vehicles and pedestrians each in ID order (so that a scene does
- *  not depend on how SUMO listed them). Invalid objects within reach of the test are appended to
- *  `left_out`. */
+/** The scene of `ego` (which must be valid): every valid object of `nearby` with the centre of
+ *  a box of its body within `range_m` of the ego's, vehicles and pedestrians each in ID order (so
+ *  that a scene does not depend on how SUMO listed them); vehicles that are no road user or
+ *  parked off the road are nobody's obstacle and left out. Invalid objects within reach of the
+ *  test are appended to `left_out`. */
 Scene BuildScene(const ObjectSnapshot& ego, const std::vector<const ObjectSnapshot*>& nearby,
                  double range_m, std::vector<LeftOutObject>* left_out);
 

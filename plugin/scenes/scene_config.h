@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "plugin/scenes/lane_corridor.h"
+#include "plugin/scenes/road_users.h"
 
 namespace criticality::plugin {
 
@@ -16,6 +17,13 @@ struct SceneConfig {
   double max_accel_mps2{9.7};
   /** How far lanes are sampled into a turn (LaneSamplingFor the estimator's parameters). */
   LaneSampling lane_sampling{};
+  /** What a vehicle's state may be (plugin/scenes/object_reading.h, plausible states): the
+   *  estimator's tyre-road friction and steering limit (Params::friction, max_steer_rad). */
+  double friction{1.0};
+  double max_steer_rad{0.5};
+  /** With --all-vehicles: which vClasses are egos (--ego-classes; see road_users.h). */
+  EgoClasses ego_classes;
+  bool all_vehicles{false};
 };
 
 /** How far a vehicle can get within the horizon, at least 10 m: v T + a_max T^2 / 2 (its lane

@@ -20,9 +20,11 @@ SceneBatch SceneStage::Run(const Observation& obs) {
   const SumoSurroundings& s = obs.surroundings;
   batch.objects = reader_.Read(s.objects, obs.sumo_time_s);
   ExpectCarFollowing(&batch.objects, kNormalFollowingDecelMps2);
+  Count(batch);
   std::vector<LeftOutObject> left_out;
   for (const SumoSurroundings::Ego& e : s.egos) {
     const ObjectSnapshot& ego = batch.objects[e.self];
+    if (!Estimated(ego)) continue;
     const std::string why = InvalidValues(ego);
     if (!why.empty()) {  // no estimate for this ego at this step
       left_out.push_back(LeftOutObject{ego.id, false, why});
@@ -37,6 +39,22 @@ SceneBatch SceneStage::Run(const Observation& obs) {
   }
   if (!left_out.empty()) Report(obs, left_out);
   return batch;
+}
+
+bool SceneStage::Estimated(const ObjectSnapshot& ego) {
+  if (ego.not_a_road_user) return false;
+  if (ego.parked) {  // it stands until it leaves its parking place
+    ++parked_egos_;
+    return false;
+  }
+  return !config_.all_vehicles || config_.ego_classes.Includes(ego.vehicle_class);
+}
+
+void SceneStage::Count(const SceneBatch& batch) {
+  for (const ObjectSnapshot& o : batch.objects) {
+    if (o.not_a_road_user) ++other_class_objects_;
+    if (o.off_road) ++parked_objects_;
+  }
 }
 
 void SceneStage::Report(const Observation& obs, const std::vector<LeftOutObject>& left_out) {

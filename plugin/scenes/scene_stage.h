@@ -35,16 +35,29 @@ class SceneStage {
   SceneStage(const SceneConfig& config, double step_s, bool euler_update, RoadNetwork* network,
              TrafficView* traffic);
   SceneBatch Run(const Observation& obs);
-  /** Object reads left out of scenes so far (an object is counted once per step). */
+  /** Object reads left out of scenes so far (an object is counted once per step) for values
+   *  the estimator cannot use. */
   long long invalid_objects() const { return invalid_objects_; }
+  /** Object reads whose yaw rate or acceleration was made plausible (object_reading.h). */
+  long long conditioned_states() const { return reader_.conditioned(); }
+  /** Vehicle reads left out as parked beside the road, and as no road user (ships, aircraft). */
+  long long parked_objects() const { return parked_objects_; }
+  long long other_class_objects() const { return other_class_objects_; }
+  /** Ego reads not estimated because the ego was parked. */
+  long long parked_egos() const { return parked_egos_; }
 
  private:
+  /** Whether an ego of the observation is estimated: no parked vehicle, no vehicle that is no
+   *  road user, and with --all-vehicles only the --ego-classes. */
+  bool Estimated(const ObjectSnapshot& ego);
+  void Count(const SceneBatch& batch);
   void Report(const Observation& obs, const std::vector<LeftOutObject>& left_out);
 
   SceneConfig config_;
   double euler_update_step_s_;
   ObjectReader reader_;
   long long invalid_objects_{0};
+  long long parked_objects_{0}, other_class_objects_{0}, parked_egos_{0};
   bool reported_{false};
 };
 

@@ -31,6 +31,10 @@ struct SumoObject {
   int lane_index{0};
   std::vector<std::string> route;  ///< the edges of its route
   int route_index{0};              ///< the edge of the route it is on
+  /** SUMO's stop state bits (getStopState): 1 stopped, 2 parking, 4 triggered by persons, 8 by
+   *  containers, 16 at a bus stop, 32 at a container stop, 64 at a charging station, 128 in a
+   *  parking area. */
+  int stop_state{0};
   // ---- persons ----
   /** Its next edge (crossings and walking areas included); "" when its walk ends here. */
   std::string next_edge;

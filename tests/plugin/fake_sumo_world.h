@@ -104,6 +104,7 @@ class FakeSumoWorld final : public SumoWorld {
   StepReport next_report;
   std::map<std::string, LeaderReport> leaders;
   std::map<std::string, SignalReport> signals;
+  std::map<std::string, VehicleTypeReport> types;  ///< by vType ID
   std::map<std::string, std::string> options;
   /** ReadControl's answer per vehicle; unset: the vehicle's speed as SUMO's own choice. */
   std::map<std::string, VehicleControl> control;
@@ -185,6 +186,9 @@ class FakeSumoWorld final : public SumoWorld {
     auto it = signals.find(vehicle);
     if (it == signals.end()) return std::nullopt;
     return it->second;
+  }
+  const VehicleTypeReport& TypeOf(const std::string& type_id) override {
+    return types[type_id];  // unknown: SUMO's passenger defaults
   }
   const LaneInfo& Lane(const std::string& id) override { return lanes_.at(id); }
   const std::vector<LaneLink>& Links(const std::string& lane) override { return links_[lane]; }

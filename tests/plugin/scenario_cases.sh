@@ -3,7 +3,9 @@
 #   scenario_cases.sh DRIVER BENCH SCENARIOS_DIR WORK_DIR CASE
 # Cases: collision:NAME, free:NAME, brake, conversion_replay, connect, all_vehicles,
 # consistent_reads, disk_full, sumo_dies, bad_input, lifecycle_arrive, lifecycle_teleport,
-# collision_actions, reader, signals, small_options, counter_traffic.
+# collision_actions, reader, signals, small_options, counter_traffic, riding_person,
+# city_one_ego, city_sublane_all, mixed_fleet:NETWORK (level_crossing, tram_street, trucks,
+# bus_stop, parking, bike_lanes).
 # Every check asserts on the results database (sqlite3), on exit codes and messages, or on
 # SUMO's own outputs.
 set -u
@@ -551,6 +553,52 @@ print(f'resident memory: first half up to {first:.1f} MB, second half up to {sec
       f'(allowed {allowed:.1f}: {more_egos} more egos per step)')
 sys.exit(0 if second <= allowed else 1)
 PY
+    ;;
+  mixed_fleet:*)
+    # Issue 21: every run completes on networks with every road user and state SUMO has
+    # (data/mixed_fleet/NAME.sumocfg on the sumo_nets built for each): --all-vehicles, and a
+    # named ego beside the special vehicles. Both: exit 0, run completed, no error on stderr.
+    # Named ego: steps recorded for it at every step where a special one is within 30 m of it
+    # (footprints from SUMO's FCD), the in-lane ones objects of its scene there. All vehicles:
+    # no vehicle an ego while it is parked (SUMO's stop output), the road vehicles among the
+    # special ones egos, rail vehicles not (the default --ego-classes).
+    name=${case#mixed_fleet:}; cfg=$data/mixed_fleet/$name.sumocfg
+    egos= no_egos=
+    case $name in
+      level_crossing) specials=train in_scene=train no_egos=train ;;  # a 150 m train
+      tram_street) specials=tram_east,tram_west in_scene=$specials no_egos=$specials ;;  # 45 m, 32 m
+      trucks) specials=semitrailer,truck_trailer,road_train in_scene=$specials egos=$specials ;;
+      bus_stop) specials=bus in_scene=bus egos=bus ;;  # stands at its stop while passengers board
+      parking) specials=parked1,parked2,parked3,parked4,parked5,van1,van2,van3 in_scene= egos=parked2,parked4,van2 ;;
+      bike_lanes) specials=cyclist1,cyclist2,walker1 in_scene=cyclist1,cyclist2 egos=truck,cyclist1,cyclist2 ;;
+      *) echo "unknown mixed_fleet network $name"; exit 2 ;;
+    esac
+    for mode in named all; do
+      db=$work/$name.$mode.sqlite scenes=$work/$name.scenes; rm -f "$db"
+      if [ $mode = named ]; then
+        rm -rf "$scenes"
+        args=(--ego ego --record-scenes "$scenes")
+      else
+        args=(--all-vehicles --own-lane-samples 1 --neighbour-lane-samples 1)
+      fi
+      summary=$("$driver" --no-progress -c "$cfg" "${args[@]}" --output "$db" -- \
+                  --fcd-output "$work/$name.$mode.fcd.xml" --stop-output "$work/$name.$mode.stops.xml" \
+                  --stop-output.write-unfinished true 2>"$work/$name.$mode.err"); rc=$?
+      tail -n 1 <<<"$summary"
+      [ -s "$work/$name.$mode.err" ] && sed -e 's/^/   stderr: /' "$work/$name.$mode.err" | head -n 5
+      check "$name ($mode): exit 0" test $rc -eq 0
+      check "$name ($mode): summary says completed" \
+        test "$(summary_field "$(tail -n 1 <<<"$summary")" status)" = completed
+      check "$name ($mode): the run is completed in the database" \
+        test "$(q "$db" "select status from runs" 2>/dev/null)" = completed
+      check "$name ($mode): no error on stderr" test -z "$(grep -i error "$work/$name.$mode.err")"
+    done
+    check "$name (named ego): steps recorded while each special vehicle is within 30 m, the in-lane ones in its scene" \
+      python3 "$here/mixed_fleet_check.py" named "$cfg" "$work/$name.named.fcd.xml" \
+        "$work/$name.named.sqlite" "$work/$name.scenes" ego 30 "$specials" --in-scene "$in_scene"
+    check "$name (--all-vehicles): no ego while parked, road vehicles egos, rail vehicles not" \
+      python3 "$here/mixed_fleet_check.py" all "$work/$name.all.stops.xml" "$work/$name.all.sqlite" \
+        --egos "$egos" --no-egos "$no_egos"
     ;;
   *) echo "unknown case $case"; exit 2 ;;
 esac

@@ -10,10 +10,13 @@ and reports from SUMO's collision detection and the trajectories:
   - optionally (--ssm) SUMO's SSM device on the ego: minimum TTC, maximum DRAC, minimum PET.
 With --check it compares that with the scenario's expectation (scenario.cfg: expect,
 expect-partner, quiet-until) and the recorded outcome (recorded_outcomes.txt beside this file)
-and exits 1 on any difference.
+and exits 1 on any difference. With --record it checks the expectation only (scenario.cfg) and
+writes the outcome of each scenario that meets it into recorded_outcomes.txt (its line replaced
+or added; the other lines stay); re-record only after checking that a changed outcome is still
+the scenario's intent.
 
-Usage: sumo_outcome.py --driver build/plugin/sumo-criticality [--work DIR] [--ssm] [--check]
-                       scenarios/NAME [scenarios/NAME ...]
+Usage: sumo_outcome.py --driver build/plugin/sumo-criticality [--work DIR] [--ssm]
+                       [--check | --record] scenarios/NAME [scenarios/NAME ...]
 """
 import argparse
 import json
@@ -63,6 +66,38 @@ def ReadRecorded(path):
                 raise ValueError(f"{path}: bad line '{line.strip()}'")
             recorded[w[0]] = (w[1], w[2], float(w[3]))
     return recorded
+
+
+def Outcome(report):
+    """The line recorded_outcomes.txt holds for a run: (kind, object, value)."""
+    got = report.get("ego_collision")
+    if got:
+        return "collision", got["partner"], round(got["time_s"], 1)
+    if not report["closest"]:
+        return None
+    oid, c = min(report["closest"].items(), key=lambda kv: kv[1]["distance_m"])
+    return "free", oid, round(c["distance_m"], 2)
+
+
+def WriteRecorded(path, outcomes):
+    """Replaces or adds the lines of the scenarios in outcomes (name -> (kind, object, value));
+    comments and the other scenarios' lines stay; collisions first, then free ones, by name."""
+    header, entries = [], {}
+    with open(path) as f:
+        for line in f:
+            w = line.split("#")[0].split()
+            if not w:
+                header.append(line)
+            else:
+                entries[w[0]] = (w[1], w[2], float(w[3]))
+    entries.update(outcomes)
+    with open(path, "w") as f:
+        f.writelines(header)
+        for kind in ("collision", "free"):
+            for name in sorted(n for n, e in entries.items() if e[0] == kind):
+                _, obj, value = entries[name]
+                text = f"{value:.1f}" if kind == "collision" else f"{value:g}"
+                f.write(f"{name:<31} {kind:<9} {obj:<15} {text}\n")
 
 
 def Dimensions(sumocfg):
@@ -287,21 +322,40 @@ def main():
     ap.add_argument("--work", default="/tmp/sumo_outcome", help="folder for databases and FCD")
     ap.add_argument("--ssm", action="store_true", help="also run SUMO's SSM device on the ego")
     ap.add_argument("--check", action="store_true", help="compare with the expectation; exit 1 on a difference")
+    ap.add_argument("--record", action="store_true",
+                    help="write each scenario's outcome into recorded_outcomes.txt (only where it "
+                    "meets scenario.cfg's expectation; exit 1 where not)")
     ap.add_argument("scenarios", nargs="+")
     a = ap.parse_args()
+    if a.check and a.record:
+        ap.error("--check and --record exclude each other")
     os.makedirs(a.work, exist_ok=True)
-    recorded = ReadRecorded(os.path.join(HERE, "recorded_outcomes.txt")) if a.check else {}
+    path = os.path.join(HERE, "recorded_outcomes.txt")
+    recorded = ReadRecorded(path) if a.check else {}
     failed = 0
+    outcomes = {}
     for scenario in a.scenarios:
         cfg, report = Run(a.driver, scenario, a.work, a.ssm)
         print(json.dumps(report))
-        if a.check:
-            fails = Check(cfg, report, recorded)
+        if a.check or a.record:
+            if a.record:  # the expectation alone: what this run gives is to be recorded
+                outcome = Outcome(report) if report["exit"] == 0 else None
+                fails = [f for f in Check(cfg, report, {}) if not f.startswith("no recorded outcome")]
+                if outcome is None and not fails:
+                    fails = ["nothing to record (no other object near the ego)"]
+            else:
+                fails = Check(cfg, report, recorded)
             for f in fails:
                 print(f"FAILED: {report['scenario']}: {f}")
             if not fails:
-                print(f"ok: {report['scenario']}")
+                if a.record:
+                    outcomes[report["scenario"]] = outcome
+                    print(f"recorded: {report['scenario']} {' '.join(map(str, outcome))}")
+                else:
+                    print(f"ok: {report['scenario']}")
             failed += bool(fails)
+    if outcomes:
+        WriteRecorded(path, outcomes)
     sys.exit(1 if failed else 0)
 
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Scale figures of criticality-campaign (bench/RESULTS.md), with the stand-in driver from the
-# tests (no SUMO, no estimator), so that only the campaign's own costs are measured:
+# tests (no SUMO, no estimator), so that only the campaign's own costs are measured (--no-check:
+# the stand-in scenarios have no SUMO files for plan to check):
 #   1. plan of a 100,000-run grid: the summary, and every run listed (--list);
 #   2. pool overhead per run: N runs of a stand-in that writes nothing, against the same stand-in
 #      started N times by a plain shell loop (the cost of the process itself);
@@ -38,8 +39,8 @@ grid:
     seed: {range: [1, 1000]}
 YAML
 for k in 1 2 3; do
-  t0=$(now); "$tool" plan plan.yaml >/dev/null; t1=$(now)
-  "$tool" plan plan.yaml --list >list.tsv; t2=$(now)
+  t0=$(now); "$tool" plan plan.yaml --no-check >/dev/null; t1=$(now)
+  "$tool" plan plan.yaml --no-check --list >list.tsv; t2=$(now)
   echo "plan, 100,000 runs: summary $(secs "$t0" "$t1") s, --list (every run) $(secs "$t1" "$t2") s ($(($(wc -l <list.tsv) - 4)) runs listed)"
 done
 echo
@@ -60,9 +61,9 @@ for k in 1 2 3; do
   t0=$(now)
   for i in $(seq "$runs"); do "$stand_in" --output x --stand-in-no-db >/dev/null; done
   t1=$(now)
-  out=$("$tool" run pool.yaml -j 1 --no-progress 2>/dev/null); t2=$(now)
+  out=$("$tool" run pool.yaml -j 1 --no-check --no-progress 2>/dev/null); t2=$(now)
   rm -rf out-pool
-  out2=$("$tool" run pool.yaml -j 2 --no-progress 2>/dev/null); t3=$(now)
+  out2=$("$tool" run pool.yaml -j 2 --no-check --no-progress 2>/dev/null); t3=$(now)
   awk -v n="$runs" -v a="$t0" -v b="$t1" -v c="$t2" -v d="$t3" -v ok1="$(field ok "$out")" \
       -v ok2="$(field ok "$out2")" -v cpu="$(field cpu_s "$out")" 'BEGIN {
     direct = (b - a) / n * 1000; pool1 = (c - b) / n * 1000; pool2 = (d - c) / n * 1000;
@@ -84,7 +85,7 @@ grid:
     seed: {range: [1, 1000]}
 YAML
 rm -rf out-merge
-"$tool" run merge.yaml -j 2 --no-progress >/dev/null 2>&1
+"$tool" run merge.yaml -j 2 --no-check --no-progress >/dev/null 2>&1
 size=$(du -sh out-merge/runs | cut -f1)
 for k in 1 2 3; do
   rm -f out-merge/campaign.sqlite
@@ -104,7 +105,7 @@ driver:
   stand-in-no-db: true
 repetitions: $n
 YAML
-  out=$("$tool" run mem.yaml -j 2 --no-progress 2>/dev/null)
+  out=$("$tool" run mem.yaml -j 2 --no-check --no-progress 2>/dev/null)
   echo "run memory, $n runs: peak RSS of criticality-campaign $(field max_rss_kb "$out") kB"
 done
 echo "work folder: $work"

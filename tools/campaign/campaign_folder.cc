@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "tools/campaign/campaign_error.h"
+#include "tools/campaign/replan.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -30,6 +31,8 @@ int Width(std::size_t runs) {
   for (std::size_t n = runs > 0 ? runs - 1 : 0; n >= 10; n /= 10) ++w;
   return w < 6 ? 6 : w;
 }
+
+}  // namespace
 
 json PlanInfo(const Plan& plan) {
   json j;
@@ -53,6 +56,8 @@ json PlanInfo(const Plan& plan) {
   }
   return j;
 }
+
+namespace {
 
 json ReadJson(const fs::path& p) {
   std::ifstream in(p);
@@ -99,10 +104,31 @@ void RemoveTree(const fs::path& dir) {
 }
 
 CampaignFolder CampaignFolder::Prepare(const fs::path& dir, const Plan& plan) {
+  return Prepare(dir, plan, false);
+}
+
+CampaignFolder CampaignFolder::Layout(const fs::path& dir, std::size_t runs) {
+  CampaignFolder f;
+  f.dir_ = fs::absolute(dir).lexically_normal();
+  f.runs_ = runs;
+  f.width_ = Width(runs);
+  return f;
+}
+
+CampaignFolder CampaignFolder::Prepare(const fs::path& dir, const Plan& plan, bool replan) {
   std::error_code ec;
   fs::create_directories(dir / "runs", ec);
   if (ec)
     throw CampaignError("cannot create campaign folder '" + dir.string() + "': " + ec.message());
+  // One process at a time creates the folder's plan or changes it.
+  const fs::path lock = dir / "campaign.lock";
+  const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw CampaignError("cannot create '" + lock.string() + "': " + std::strerror(errno));
+  struct Unlock {
+    int fd;
+    ~Unlock() { ::close(fd); }
+  } unlock{fd};
+  ::flock(fd, LOCK_EX);
   const fs::path info_path = dir / "campaign.json";
   json info = PlanInfo(plan);
   info["created_utc"] = UtcNow();
@@ -123,14 +149,22 @@ CampaignFolder CampaignFolder::Prepare(const fs::path& dir, const Plan& plan) {
     fs::remove(tmp, ec);
   }
   CampaignFolder f = Open(dir);
-  const std::string have = f.info_.value("fingerprint", "");
-  if (have != plan.FingerprintHex()) {
-    throw CampaignError("campaign folder '" + dir.string() + "' holds another plan (fingerprint " +
-                        have + ", this file's " + plan.FingerprintHex() +
-                        ": scenarios, egos, options, grid or repetitions "
-                        "changed since it was started); use a new output folder, or remove it");
+  if (f.info_.value("fingerprint", "") == plan.FingerprintHex()) return f;
+  // Another version of the campaign file: keep what it still has (replan.h).
+  const PlanChanges changes = CompareWithFolder(dir, plan);
+  if (!changes.busy.empty() || (!changes.superseded.empty() && !replan)) {
+    throw CampaignError(
+        "campaign folder '" + dir.string() + "': " + changes.Describe() +
+        (changes.busy.empty()
+             ? "run again with --replan to go on with the new plan (superseded runs are moved "
+               "to " +
+                   (dir / "superseded").string() + "), or use a new output folder"
+             : "change the campaign file once no run command works on the folder"));
   }
-  return f;
+  ApplyChanges(dir, plan, changes);
+  CampaignFolder g = Open(dir);
+  g.changes_ = changes.Describe();
+  return g;
 }
 
 CampaignFolder CampaignFolder::Open(const fs::path& dir) {

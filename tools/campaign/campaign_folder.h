@@ -26,8 +26,18 @@ class CampaignFolder {
   /** Creates the folder for `plan`, or checks that an existing one was made for the same plan
    *  (same fingerprint): CampaignError otherwise. Safe against concurrent callers. */
   static CampaignFolder Prepare(const std::filesystem::path& dir, const Plan& plan);
+  /** The same, and when the folder holds runs of an earlier version of the campaign file,
+   *  keeps the runs the new plan still has (replan.h): failed or half-done changed runs are
+   *  redone; successful ones the new plan no longer has need `replan` (CampaignError listing
+   *  them otherwise). changes() then says what was done. */
+  static CampaignFolder Prepare(const std::filesystem::path& dir, const Plan& plan, bool replan);
   /** Opens an existing campaign folder (merge, report). */
   static CampaignFolder Open(const std::filesystem::path& dir);
+  /** The names of a folder for `runs` runs, without reading or writing anything. */
+  static CampaignFolder Layout(const std::filesystem::path& dir, std::size_t runs);
+
+  /** What Prepare did with the runs of an earlier plan ("" when nothing). */
+  const std::string& changes() const { return changes_; }
 
   const std::filesystem::path& dir() const { return dir_; }
   std::size_t runs() const { return runs_; }
@@ -45,7 +55,12 @@ class CampaignFolder {
   std::size_t runs_{0};
   int width_{6};
   nlohmann::json info_;
+  std::string changes_;
 };
+
+/** campaign.json for a plan: format, fingerprint, runs, name, campaign file, repetitions,
+ *  scenarios, axes. */
+nlohmann::json PlanInfo(const Plan& plan);
 
 /** The right to run one run: an flock on its lock file, held until destruction (or until the
  *  process dies, when the kernel releases it). */

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,6 +21,8 @@
 #include "tools/campaign/driver_locator.h"
 #include "tools/campaign/merge.h"
 #include "tools/campaign/plan.h"
+#include "tools/campaign/plan_check.h"
+#include "tools/campaign/replan.h"
 #include "tools/campaign/report.h"
 #include "tools/campaign/run_campaign.h"
 #include "tools/campaign/slurm_job.h"
@@ -41,7 +44,7 @@ const char* kUsage =
     "criticality-campaign: parameter sweeps of sumo-criticality across SUMO scenarios, on this "
     "machine or on a Slurm cluster.\n\n"
     "Usage:\n"
-    "  criticality-campaign plan FILE [--list]           the runs, without running anything\n"
+    "  criticality-campaign plan FILE [--list]           the runs, and proof each can start\n"
     "  criticality-campaign run FILE [-j N]               run (resuming) through a process pool\n"
     "  criticality-campaign slurm FILE [--submit [--wait]]  write (and submit) a job array\n"
     "  criticality-campaign merge DIR                     complete runs -> DIR/campaign.sqlite\n"
@@ -51,7 +54,8 @@ const char* kUsage =
     "DIR its output folder. Each run is `sumo-criticality ... --output run.sqlite --no-progress`,\n"
     "found with --driver, $SUMO_CRITICALITY_DRIVER, next to this program, or on PATH.\n"
     "The last line of standard output is a JSON summary. Exit codes: 0 done, 1 internal error,\n"
-    "2 bad campaign file, options or folder, 3 some runs failed (recorded; the others went on),\n"
+    "2 bad campaign file, options or folder, or a run that could not start (plan's checks),\n"
+    "3 some runs failed (recorded; the others went on),\n"
     "130 interrupted (SIGINT/SIGTERM: running runs are left to be redone).\n";
 
 int CpuCount() {
@@ -94,9 +98,59 @@ Plan LoadPlan(const std::string& file, const std::string& output) {
   return Plan(std::move(spec));
 }
 
-// Checks the campaign's driver options against the driver's --help.
-void CheckOptions(const Plan& plan, const std::string& driver) {
-  CheckDriverOptions(plan.spec(), DriverOptionNames(driver));
+// Checks the campaign's driver options against the driver's --help; whether the driver can
+// check values too (--check-options).
+bool CheckOptions(const Plan& plan, const std::string& driver) {
+  const std::set<std::string> names = DriverOptionNames(driver);
+  CheckDriverOptions(plan.spec(), names);
+  return names.count("check-options") > 0;
+}
+
+// How `plan` (and `run`, `slurm` unless --no-check) proves that the runs can start.
+struct CheckChoice {
+  std::string sumo;
+  std::size_t max_sets{200};
+  int jobs{1};
+  bool skip{false};
+};
+
+void AddCheckOptions(po::options_description& o, CheckChoice& c) {
+  o.add_options()("sumo", po::value(&c.sumo),
+                  "sumo binary for checking the SUMO options (default: $SUMO_HOME/bin/sumo, "
+                  "then PATH)")(
+      "check-sets", po::value(&c.max_sets)->default_value(c.max_sets),
+      "check every distinct option set up to this many per program; beyond, each grid value "
+      "at least once per scenario");
+}
+
+// Runs the checks (plan_check.h), printing what was checked to `log`; prints each error and
+// returns false when a run could not start.
+bool ProveRunsStart(const Plan& plan, const std::string& driver, bool driver_checks,
+                    const CheckChoice& c, std::ostream& log, json* summary) {
+  CheckSettings s;
+  s.driver = driver;
+  s.driver_checks = driver_checks;
+  std::string why;
+  s.sumo = FindSumo(c.sumo, why);
+  if (s.sumo.empty() && !c.sumo.empty()) throw CampaignError(why);
+  s.jobs = c.jobs;
+  s.max_sets = c.max_sets;
+  const PlanCheck check = CheckPlan(plan, s);
+  for (const std::string& l : check.checked) log << "checked: " << l << "\n";
+  for (const std::string& l : check.unchecked) log << "not checked: " << l << "\n";
+  if (s.sumo.empty()) log << "  (" << why << ")\n";
+  for (const std::string& e : check.errors)
+    std::cerr << "criticality-campaign: error: " << e << "\n";
+  if (summary) {
+    (*summary)["check"] = {{"errors", check.errors.size()},
+                           {"driver_sets", check.driver_sets},
+                           {"driver_checked", check.driver_checked},
+                           {"sumo_sets", check.sumo_sets},
+                           {"sumo_checked", check.sumo_checked},
+                           {"scenario_files", check.scenario_files},
+                           {"unchecked", check.unchecked}};
+  }
+  return check.errors.empty();
 }
 
 std::string Joined(const std::vector<std::string>& argv) {
@@ -112,26 +166,48 @@ int CmdPlan(const std::vector<std::string>& args) {
   std::string file, output, driver_opt;
   int show = 5;
   bool list = false;
+  CheckChoice check;
+  check.jobs = CpuCount();
   po::options_description o("plan options");
   o.add_options()("file", po::value(&file), "campaign file")(
       "output,o", po::value(&output), "campaign folder (default: the file's `output`)")(
       "show", po::value(&show)->default_value(show), "print the first N runs with their commands")(
       "list", po::bool_switch(&list), "print every run: index, scenario, parameters, repetition")(
-      "driver", po::value(&driver_opt), "sumo-criticality to check the options against");
+      "driver", po::value(&driver_opt), "sumo-criticality to check the options with")(
+      "jobs,j", po::value(&check.jobs)->default_value(check.jobs), "checks at once")(
+      "no-check", po::bool_switch(&check.skip),
+      "only the campaign file: no driver or SUMO run to check the options");
+  AddCheckOptions(o, check);
   po::variables_map vm;
-  if (!Parse(args, o, "file", vm, "Usage: criticality-campaign plan FILE [--list]")) return 0;
+  if (!Parse(args, o, "file", vm,
+             "Usage: criticality-campaign plan FILE [--list]\n"
+             "Lists the runs and proves that they can start: every scenario's files exist,\n"
+             "every driver option set passes sumo-criticality --check-options, every SUMO option\n"
+             "set passes SUMO (--save-configuration, then a dry start). Exit code 2 with one\n"
+             "line per error (file, line, key) when a run could not start."))
+    return 0;
   const Plan plan = LoadPlan(file, output);
   std::string driver;
   std::string checked = "not checked: ";
+  bool driver_checks = false, found = false;
   try {
     driver = FindDriver(driver_opt);
-    CheckOptions(plan, driver);
-    checked = "driver options checked against " + driver;
+    found = true;
+    driver_checks = CheckOptions(plan, driver);
+    checked = "driver option names checked against " + driver + " --help";
   } catch (const CampaignError& e) {
-    if (!driver.empty()) throw;  // found, and an option is wrong
+    if (found) throw;  // found, and an option is wrong
     checked += e.what();
     driver = "sumo-criticality";
   }
+  json j{{"runs", plan.size()},
+         {"scenarios", plan.scenarios().size()},
+         {"repetitions", plan.spec().repetitions},
+         {"fingerprint", plan.FingerprintHex()},
+         {"output", plan.spec().output.string()}};
+  std::ostringstream log;
+  const bool can_start =
+      check.skip || ProveRunsStart(plan, found ? driver : "", driver_checks, check, log, &j);
   std::ostringstream shape;
   shape << plan.scenarios().size() << " scenario" << (plan.scenarios().size() == 1 ? "" : "s");
   for (const Axis& a : plan.axes()) shape << " x " << a.values.size() << " " << a.name;
@@ -140,7 +216,8 @@ int CmdPlan(const std::vector<std::string>& args) {
   std::cout << "campaign " << plan.spec().name << ": " << plan.size() << " runs (" << shape.str()
             << ")\n"
             << "output: " << plan.spec().output.string() << "\n"
-            << checked << "\n";
+            << checked << "\n"
+            << (check.skip ? "not checked: option values, SUMO options (--no-check)\n" : log.str());
   if (list) {
     std::cout << "index\tscenario\tparameters\trepetition\n";
     for (std::size_t i = 0; i < plan.size(); ++i) {
@@ -161,15 +238,24 @@ int CmdPlan(const std::vector<std::string>& args) {
                 << "\n    " << Joined(plan.Command(r, driver, "run.sqlite")) << "\n";
     }
   }
-  json j{{"runs", plan.size()},
-         {"scenarios", plan.scenarios().size()},
-         {"repetitions", plan.spec().repetitions},
-         {"fingerprint", plan.FingerprintHex()},
-         {"output", plan.spec().output.string()}};
   j["axes"] = json::object();
   for (const Axis& a : plan.axes()) j["axes"][a.name] = a.values.size();
+  j["can_start"] = can_start;
+  // A folder started with an earlier version of the file: what `run` would do with its runs.
+  if (fs::exists(plan.spec().output / "campaign.json")) {
+    const PlanChanges changes = CompareWithFolder(plan.spec().output, plan);
+    if (changes.changed) {
+      std::cout << changes.Describe()
+                << (changes.superseded.empty() ? ""
+                                               : "(`run` needs --replan to move the superseded "
+                                                 "runs aside)\n");
+      j["folder"] = {{"kept", changes.kept.size()},
+                     {"redone", changes.redone.size()},
+                     {"superseded", changes.superseded.size()}};
+    }
+  }
   std::cout << j.dump() << std::endl;
-  return kExitOk;
+  return can_start ? kExitOk : kExitBadInput;
 }
 
 void ParseRange(const std::string& text, std::size_t& first, std::size_t& last) {
@@ -196,19 +282,27 @@ int CmdRun(const std::vector<std::string>& args) {
   std::string file, output, driver_opt, runs;
   int jobs = CpuCount();
   double time_limit = -1.0, log_every = 30.0;
-  bool retry = false, no_progress = false;
+  bool retry = false, no_progress = false, replan = false;
+  CheckChoice check;
   po::options_description o("run options");
   o.add_options()("file", po::value(&file), "campaign file")(
       "jobs,j", po::value(&jobs)->default_value(jobs), "runs at once (default: the cores)")(
       "runs", po::value(&runs), "only these runs: FIRST-LAST or INDEX (a Slurm task's share)")(
       "retry-failed", po::bool_switch(&retry), "redo complete runs whose status is not ok")(
+      "replan", po::bool_switch(&replan),
+      "the campaign file changed and drops successful runs of the folder: move them to "
+      "OUT/superseded/ and go on (without it the run stops and lists them)")(
       "time-limit", po::value(&time_limit),
       "seconds per run, then SIGTERM and SIGKILL (default: the file's limits.time_s)")(
       "output,o", po::value(&output), "campaign folder (default: the file's `output`)")(
       "driver", po::value(&driver_opt), "sumo-criticality to run")(
       "no-progress", po::bool_switch(&no_progress), "no progress output")(
       "log-every", po::value(&log_every)->default_value(log_every),
-      "seconds between progress lines when stderr is not a terminal");
+      "seconds between progress lines when stderr is not a terminal")(
+      "no-check", po::bool_switch(&check.skip),
+      "start the runs without first checking their options through the driver and SUMO (as "
+      "`plan` does; Slurm tasks, whose script `slurm` wrote after checking)");
+  AddCheckOptions(o, check);
   po::variables_map vm;
   if (!Parse(args, o, "file", vm, "Usage: criticality-campaign run FILE [-j N] [--runs A-B]"))
     return 0;
@@ -218,8 +312,12 @@ int CmdRun(const std::vector<std::string>& args) {
   ro.jobs = jobs;
   if (!runs.empty()) ParseRange(runs, ro.first, ro.last);
   ro.retry_failed = retry;
+  ro.replan = replan;
   ro.driver = FindDriver(driver_opt);
-  CheckOptions(plan, ro.driver);
+  const bool driver_checks = CheckOptions(plan, ro.driver);
+  check.jobs = jobs;
+  if (!check.skip && !ProveRunsStart(plan, ro.driver, driver_checks, check, std::cerr, nullptr))
+    return kExitBadInput;
   ro.time_limit_s = time_limit >= 0 ? time_limit : plan.spec().time_limit_s;
   ro.kill_after_s = plan.spec().kill_after_s;
   ro.progress = no_progress ? nullptr : stderr;
@@ -243,16 +341,24 @@ int CmdRun(const std::vector<std::string>& args) {
 
 int CmdSlurm(const std::vector<std::string>& args) {
   std::string file, output, driver_opt;
-  bool submit = false, wait = false;
+  bool submit = false, wait = false, replan = false;
   double poll = 2.0, time_limit = -1.0;
+  CheckChoice check;
+  check.jobs = CpuCount();
   po::options_description o("slurm options");
   o.add_options()("file", po::value(&file), "campaign file")("submit", po::bool_switch(&submit),
                                                              "submit the script with sbatch")(
       "wait", po::bool_switch(&wait), "with --submit: wait until the job has left the queue")(
-      "poll", po::value(&poll)->default_value(poll), "seconds between squeue polls (--wait)")(
+      "replan", po::bool_switch(&replan),
+      "the campaign file changed and drops successful runs of the folder: move them aside "
+      "(see run --help)")("poll", po::value(&poll)->default_value(poll),
+                          "seconds between squeue polls (--wait)")(
       "time-limit", po::value(&time_limit), "seconds per run (default: limits.time_s)")(
       "output,o", po::value(&output), "campaign folder (default: the file's `output`)")(
-      "driver", po::value(&driver_opt), "sumo-criticality the tasks run");
+      "driver", po::value(&driver_opt), "sumo-criticality the tasks run")(
+      "no-check", po::bool_switch(&check.skip),
+      "write the script without first checking the options through the driver and SUMO");
+  AddCheckOptions(o, check);
   po::variables_map vm;
   if (!Parse(
           args, o, "file", vm,
@@ -263,8 +369,11 @@ int CmdSlurm(const std::vector<std::string>& args) {
   if (wait && !submit) throw CampaignError("--wait needs --submit");
   const Plan plan = LoadPlan(file, output);
   const std::string driver = FindDriver(driver_opt);
-  CheckOptions(plan, driver);
-  const CampaignFolder folder = CampaignFolder::Prepare(plan.spec().output, plan);
+  const bool driver_checks = CheckOptions(plan, driver);
+  if (!check.skip && !ProveRunsStart(plan, driver, driver_checks, check, std::cerr, nullptr))
+    return kExitBadInput;
+  const CampaignFolder folder = CampaignFolder::Prepare(plan.spec().output, plan, replan);
+  if (!folder.changes().empty()) std::cerr << "criticality-campaign: " << folder.changes();
   const SlurmJob job = MakeSlurmJob(plan, folder, SelfPath(), driver,
                                     time_limit >= 0 ? time_limit : plan.spec().time_limit_s);
   const fs::path dir = folder.dir() / "slurm";
@@ -345,7 +454,12 @@ int CmdReport(const std::vector<std::string>& args) {
                                                              "tables only")(
       "python", po::value(&ro.python),
       "Python 3 with matplotlib (default: $CRIT_PYTHON, /usr/bin/python3, python3)")(
-      "script", po::value(&script), "figure script (default: tools/campaign/campaign_report.py)");
+      "script", po::value(&script), "figure script (default: tools/campaign/campaign_report.py)")(
+      "scene-pictures", po::value(&ro.scene_pictures)->default_value(ro.scene_pictures),
+      "draw the scene of at most this many warnings (0: none), linked from the warning table")(
+      "bench", po::value(&ro.bench),
+      "criticality-bench that replays a warning's scene for its hypotheses (default: "
+      "$CRIT_BENCH, the build tree next to this program, PATH)");
   po::variables_map vm;
   if (!Parse(
           args, o, "dir", vm,

@@ -135,6 +135,13 @@ class Merger {
       }
       ++t.merged;
     }
+    // Runs beyond the plan: the campaign file changed and has fewer runs now.
+    for (auto it = merged_.lower_bound(folder_.runs()); it != merged_.end(); ++it) {
+      db_.Exec("BEGIN");
+      DeleteRun(it->first);
+      db_.Exec("COMMIT");
+      ++t.removed;
+    }
     t.tables = 0;
     for (const auto& [name, cols] : tables_) t.tables += kOwnTables.count(name) ? 0 : 1;
     return t;

@@ -1,5 +1,7 @@
 #include "tools/campaign/plan.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 
 #include "tools/campaign/campaign_error.h"
@@ -107,6 +109,53 @@ PlanRun Plan::Run(std::size_t index) const {
   }
   r.scenario = rest;
   return r;
+}
+
+std::size_t Plan::IndexOf(const PlanRun& run) const {
+  std::size_t i = run.scenario;
+  for (std::size_t k = 0; k < spec_.axes.size(); ++k)
+    i = i * spec_.axes[k].values.size() + run.value.at(k);
+  return i * static_cast<std::size_t>(spec_.repetitions) + static_cast<std::size_t>(run.repetition);
+}
+
+std::string Plan::Identity(const PlanRun& run) const {
+  const Scenario& s = scenarios_[run.scenario];
+  std::vector<std::string> argv = Command(run, "", "");
+  return RunIdentity(s.rel_path, run.repetition, argv);
+}
+
+std::string RunIdentity(const std::string& scenario, int repetition,
+                        const std::vector<std::string>& argv) {
+  // argv: DRIVER (--config|--sumo-config) FILE options --output OUT --no-progress [-- SUMO].
+  std::vector<std::pair<std::string, std::string>> driver, sumo;
+  auto is_flag = [](const std::string& a) {
+    return a.size() >= 2 && a[0] == '-' &&
+           (a[1] == '-' || std::isalpha(static_cast<unsigned char>(a[1])));
+  };
+  bool after = false;
+  for (std::size_t i = 1; i < argv.size(); ++i) {
+    const std::string& a = argv[i];
+    if (a == "--" && !after) {
+      after = true;
+      continue;
+    }
+    if (!is_flag(a)) continue;  // a value without its option: not ours
+    std::string name = a.substr(a[1] == '-' ? 2 : 1);
+    const bool has_value = i + 1 < argv.size() && !is_flag(argv[i + 1]) && argv[i + 1] != "--";
+    const std::string value = has_value ? argv[++i] : "";
+    if (!after && (name == "config" || name == "sumo-config" || name == "c" || name == "output" ||
+                   name == "no-progress"))
+      continue;  // the scenario (given apart), the output and what every run gets
+    (after ? sumo : driver).emplace_back(name, has_value ? name + "=" + value : name);
+  }
+  std::string id = "scenario=" + scenario + "\nrepetition=" + std::to_string(repetition);
+  for (auto* list : {&driver, &sumo}) {
+    std::stable_sort(list->begin(), list->end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    id += list == &driver ? "\ndriver:" : "\nsumo:";
+    for (const auto& [name, token] : *list) id += " " + token;
+  }
+  return id;
 }
 
 std::vector<std::pair<std::string, std::string>> Plan::GridValues(const PlanRun& run) const {

@@ -29,6 +29,8 @@ class Plan {
 
   std::size_t size() const { return size_; }
   PlanRun Run(std::size_t index) const;
+  /** The index of a run: Run(IndexOf(r)) is r. */
+  std::size_t IndexOf(const PlanRun& run) const;
 
   /** The driver's command line for a run: DRIVER (--config F | -c F) [egos] [driver options]
    *  --output OUTPUT --no-progress [-- SUMO options]. Fixed options come before grid values. */
@@ -39,6 +41,12 @@ class Plan {
   std::vector<std::pair<std::string, std::string>> GridValues(const PlanRun& run) const;
   /** "profiles=6 seed=1" ("-" without a grid). */
   std::string Label(const PlanRun& run) const;
+
+  /** What decides one run, whatever its index: the scenario (relative to the campaign file),
+   *  the repetition, and the options the command gives, each "name=value" (a switch: "name"),
+   *  sorted by name (repeated options keep their order). Two runs with one identity are the
+   *  same run. Kept in run.json, so that a changed campaign file keeps the runs it still has. */
+  std::string Identity(const PlanRun& run) const;
 
   /** Identity of the plan: a hash of what decides each run (scenario files relative to the
    *  campaign file, egos, options, grid, repetitions); not the output folder, limits or Slurm
@@ -58,5 +66,10 @@ class Plan {
   std::size_t size_{0};
   std::uint64_t fingerprint_{0};
 };
+
+/** A run's identity (Plan::Identity) from its command line as recorded in run.json, for run
+ *  folders written before run.json kept the identity. `scenario` relative to the campaign file. */
+std::string RunIdentity(const std::string& scenario, int repetition,
+                        const std::vector<std::string>& argv);
 
 }  // namespace criticality::campaign

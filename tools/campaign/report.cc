@@ -12,14 +12,17 @@
 #include <map>
 #include <numeric>
 #include <set>
+#include <sstream>
 
 #include "tools/campaign/campaign_error.h"
 #include "tools/campaign/hotspots.h"
+#include "tools/campaign/rate_tables.h"
 #include "tools/campaign/reliability.h"
 #include "tools/campaign/run_metrics.h"
 #include "tools/campaign/scenario_files.h"
 #include "tools/campaign/sqlite_db.h"
 #include "tools/campaign/table_writer.h"
+#include "tools/campaign/warning_list.h"
 
 #ifndef CRIT_CAMPAIGN_REPORT_SCRIPT
 #define CRIT_CAMPAIGN_REPORT_SCRIPT ""
@@ -53,6 +56,8 @@ const std::vector<std::string> kMetricColumns = {"runs",
                                                  "estimator_ms_mean",
                                                  "estimator_ms_max",
                                                  "steps",
+                                                 "vehicle_hours",
+                                                 "vehicle_km",
                                                  "wall_s_mean"};
 
 struct Aggregate {
@@ -62,6 +67,7 @@ struct Aggregate {
   double est_sum{0.0};
   std::optional<double> est_max;
   double wall_sum{0.0};
+  double vehicle_hours{0.0}, vehicle_km{0.0};
   long long avoided{0};
   bool has_avoided{false};
 
@@ -83,6 +89,8 @@ struct Aggregate {
     est_sum += m.estimator_ms_sum;
     if (m.estimator_ms_max) est_max = std::max(est_max.value_or(0.0), *m.estimator_ms_max);
     wall_sum += m.wall_s;
+    vehicle_hours += m.vehicle_hours;
+    vehicle_km += m.vehicle_km;
     if (avoided_here) {
       avoided += *avoided_here;
       has_avoided = true;
@@ -114,6 +122,8 @@ struct Aggregate {
             av.estimator_ms && steps ? Cell(est_sum / static_cast<double>(steps)) : "",
             av.estimator_ms ? Cell(est_max) : "",
             count(av.steps, steps),
+            av.vehicle_hours && ok ? SigCell(vehicle_hours, 4) : "",
+            av.vehicle_km && ok ? SigCell(vehicle_km, 4) : "",
             ok ? Cell(wall_sum / static_cast<double>(ok), 2) : ""};
   }
 };
@@ -139,6 +149,7 @@ std::vector<AxisInfo> ReadAxes(const json& info) {
 struct BrakingEffect {
   std::map<std::size_t, long long> avoided;
   std::map<std::size_t, long long> false_alarms;
+  std::map<std::size_t, std::set<std::string>> twin_collided;  ///< egos that collided in the twin
 };
 
 BrakingEffect CompareBraking(const std::vector<RunMetrics>& runs, const std::vector<AxisInfo>& axes,
@@ -187,6 +198,7 @@ BrakingEffect CompareBraking(const std::vector<RunMetrics>& runs, const std::vec
       long long false_alarms = 0;
       for (const std::string& ego : b.false_alarm_egos) false_alarms += collided.count(ego) ? 0 : 1;
       out.false_alarms[b.run_index] = false_alarms;
+      out.twin_collided[b.run_index] = collided;
     }
   }
   return out;
@@ -219,6 +231,30 @@ std::string FindPython(const std::string& option, std::string& why) {
         : candidates.size() == 1
             ? candidates.front() + " cannot import matplotlib (install python3-matplotlib)"
             : "python3 has no matplotlib (install python3-matplotlib: tools/setup.sh)";
+  return "";
+}
+
+// criticality-bench replays a warning's scene for its picture (its hypotheses' paths).
+std::string FindBench(const std::string& option) {
+  auto executable = [](const fs::path& p) {
+    std::error_code ec;
+    return fs::is_regular_file(p, ec) && access(p.c_str(), X_OK) == 0;
+  };
+  if (!option.empty()) return executable(option) ? fs::absolute(option).string() : "";
+  if (const char* env = std::getenv("CRIT_BENCH"); env && *env) return executable(env) ? env : "";
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec).parent_path();
+  for (const fs::path& p :
+       {self / "../../estimator/bench/criticality-bench", self / "criticality-bench"}) {
+    if (!ec && executable(p)) return p.lexically_normal().string();
+  }
+  if (const char* path = std::getenv("PATH")) {
+    std::stringstream dirs(path);
+    for (std::string d; std::getline(dirs, d, ':');) {
+      if (!d.empty() && executable(fs::path(d) / "criticality-bench"))
+        return (fs::path(d) / "criticality-bench").string();
+    }
+  }
   return "";
 }
 
@@ -361,11 +397,37 @@ Table FailuresTable(SqliteDb& db) {
   return failures;
 }
 
+// Each run's grouping parameters, as the hotspots are split: "act=warn" ("-" without).
+std::map<std::size_t, std::string> Settings(const ReportInputs& in) {
+  std::map<std::size_t, std::string> out;
+  for (const RunMetrics& m : in.metrics.runs) {
+    std::string label;
+    for (const AxisInfo& a : in.axes) {
+      if (!a.grouping) continue;
+      const auto it = m.params.find(a.name);
+      label += (label.empty() ? "" : " ") + a.name + "=" + (it == m.params.end() ? "" : it->second);
+    }
+    out[m.run_index] = label.empty() ? "-" : label;
+  }
+  return out;
+}
+
+RateInputs RatesOf(const ReportInputs& in) {
+  RateInputs r{
+      in.metrics, {}, in.scenario_order, in.braking.false_alarms, in.braking.twin_collided};
+  for (const AxisInfo& a : in.axes) {
+    if (a.grouping) r.axes.push_back({a.name, a.values});
+  }
+  return r;
+}
+
 // Every table of the report, as written.
 struct ReportTables {
   Table summary, by_param, failures;
   Hotspots hot;
   Reliability rel;
+  RateTables rates;
+  Table warnings;
 };
 
 void WriteTables(const ReportTables& t, ReportResult& result) {
@@ -374,7 +436,13 @@ void WriteTables(const ReportTables& t, ReportResult& result) {
   WriteCsv(t.failures, result.dir / "failures.csv");
   WriteCsv(t.hot.counts, result.dir / "hotspots.csv");
   WriteCsv(t.hot.points, result.dir / "events.csv");
-  result.files = {"summary.csv", "by_parameter.csv", "failures.csv", "hotspots.csv", "events.csv"};
+  WriteCsv(t.rates.per_run, result.dir / "exposure.csv");
+  WriteCsv(t.rates.rates, result.dir / "rates.csv");
+  WriteCsv(t.rates.by_class, result.dir / "by_vehicle_class.csv");
+  WriteCsv(t.warnings, result.dir / "warnings.csv");
+  result.files = {"summary.csv",  "by_parameter.csv",     "failures.csv",
+                  "hotspots.csv", "events.csv",           "exposure.csv",
+                  "rates.csv",    "by_vehicle_class.csv", "warnings.csv"};
   if (t.rel.available) {
     WriteCsv(t.rel.bins, result.dir / "reliability.csv");
     result.files.push_back("reliability.csv");
@@ -432,6 +500,13 @@ json Manifest(const ReportInputs& in, const ReportTables& t, const RunCounts& c,
   manifest["ok"] = c.ok;
   manifest["failed"] = c.failed;
   manifest["grace_s"] = o.grace_s;
+  manifest["scene_pictures"] = o.scene_pictures;
+  manifest["bench"] = FindBench(o.bench);
+  manifest["available"] = {{"vehicle_hours", in.metrics.available.vehicle_hours},
+                           {"vehicle_km", in.metrics.available.vehicle_km},
+                           {"vehicle_class", in.metrics.available.vehicle_class},
+                           {"collisions", in.metrics.available.collisions},
+                           {"false_alarms", in.metrics.available.false_alarms}};
   manifest["axes"] = json::array();
   for (const AxisInfo& a : in.axes) {
     manifest["axes"].push_back(
@@ -491,7 +566,15 @@ void ColumnsSection(std::ostream& md, double grace_s) {
      << "- `collisions_avoided`: for act=brake runs, ego collisions of the same run with "
         "act=warn (or none) minus its own.\n"
      << "- `estimator_ms_*`: estimator time per estimate (steps table); `wall_s_mean`: wall "
-        "time per run.\n";
+        "time per run.\n"
+     << "- `vehicle_hours`: ego estimates x the run's step length; `vehicle_km`: the egos' "
+        "speed x step length, summed: how long and how far vehicles were watched.\n"
+     << "- Rates: events over exposure, pooled over the group's runs; the interval is 95 % "
+        "across those runs (t interval of the ratio, each run a cluster: how much the rate "
+        "moves from seed to seed) when there are two runs or more and at least one event, "
+        "else the exact Poisson interval of the pooled count (`interval`: runs or poisson; 0 "
+        "events: 0 to 3.69 / exposure). A collision of two egos counts for each of their "
+        "vehicle classes.\n";
 }
 
 void WriteSummaryMarkdown(const fs::path& file, const std::string& name, const RunCounts& c,
@@ -506,6 +589,12 @@ void WriteSummaryMarkdown(const fs::path& file, const std::string& name, const R
      << "## Per scenario and parameters\n\n"
      << MarkdownTable(t.summary) << "\n";
   TableSection(md, "Per parameter value", t.by_param, "(no grid parameters)");
+  TableSection(md,
+               "Rates per exposure (95 % interval across the runs of a group: seeds, "
+               "repetitions)",
+               t.rates.rates, "Not computable (see Not computed).");
+  TableSection(md, "Per vehicle class of the egos", t.rates.by_class,
+               "Not computable (see Not computed).");
   TableSection(md, "Failed runs", t.failures, "None.", 50);
   TableSection(md, "Hotspots (where collisions and warnings happened)", t.hot.counts,
                "No located collisions or warnings.", 30);
@@ -573,8 +662,16 @@ ReportResult MakeReport(const CampaignFolder& folder, const ReportOptions& o) {
   notes = in.metrics.notes;
   in.braking = CompareBraking(in.metrics.runs, in.axes, in.metrics.available.ego_collisions, notes);
 
-  ReportTables t{
-      SummaryTable(in), ByParameterTable(in), FailuresTable(db), ComputeHotspots(db), {}};
+  ReportTables t{SummaryTable(in),
+                 ByParameterTable(in),
+                 FailuresTable(db),
+                 ComputeHotspots(db, Settings(in)),
+                 {},
+                 {},
+                 WarningList(db, in.metrics, Settings(in), in.braking.twin_collided, notes)};
+  const RateInputs rate_in = RatesOf(in);
+  t.rates = MakeRateTables(rate_in);
+  WriteExposureTable(db, rate_in);
   notes.insert(notes.end(), t.hot.notes.begin(), t.hot.notes.end());
   t.rel = ComputeReliability(db, o.default_horizon_s, o.reliability_min_collisions);
   if (!t.rel.available) notes.push_back("reliability diagram: " + t.rel.reason);
@@ -582,6 +679,7 @@ ReportResult MakeReport(const CampaignFolder& folder, const ReportOptions& o) {
 
   const RunCounts counts = CountRuns(folder, in.metrics);
   json manifest = Manifest(in, t, counts, o, result.files);
+  manifest["database"] = db_path.string();  // the figure script reads scenes and p series there
   WriteSummaryMarkdown(result.dir / "summary.md", manifest["name"].get<std::string>(), counts, t,
                        notes, o.grace_s);
   result.files.insert(result.files.begin(), "summary.md");

@@ -23,6 +23,11 @@ struct ReportOptions {
   /** Fewest egos that collided (run, ego pairs) for a reliability diagram. */
   int reliability_min_collisions{5};
   bool plots{true};
+  /** Warnings drawn as a picture of their scene (warning_scenes), at most this many. */
+  int scene_pictures{40};
+  /** criticality-bench for the pictures' hypotheses; empty: $CRIT_BENCH, next to this program
+   *  in the build tree (estimator/bench/), or PATH. */
+  std::string bench;
   std::string python;            ///< interpreter; empty: $CRIT_PYTHON, /usr/bin/python3, python3
   std::filesystem::path script;  ///< campaign_report.py; empty: the built-in default
 };

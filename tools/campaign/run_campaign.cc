@@ -75,7 +75,9 @@ struct Active {
 
 RunTotals RunCampaign(const Plan& plan, const fs::path& out_dir, const RunOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  const CampaignFolder folder = CampaignFolder::Prepare(out_dir, plan);
+  const CampaignFolder folder = CampaignFolder::Prepare(out_dir, plan, o.replan);
+  if (!folder.changes().empty() && o.progress)
+    std::fprintf(o.progress, "criticality-campaign: %s", folder.changes().c_str());
   RunTotals totals;
   if (plan.size() == 0) return totals;
   const std::size_t first = std::min(o.first, plan.size() - 1);

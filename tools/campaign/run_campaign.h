@@ -21,6 +21,9 @@ struct RunOptions {
   std::FILE* progress{stderr};  ///< nullptr: silent
   bool progress_terminal{false};
   double log_every_s{30.0};
+  /** The folder holds successful runs of an earlier version of the campaign file that the new
+   *  plan no longer has: move them aside and go on (CampaignFolder::Prepare). */
+  bool replan{false};
 };
 
 struct RunTotals {

@@ -170,6 +170,52 @@ void LoadWarnings(Loader& l, double grace_s) {
       });
 }
 
+// Exposure per run and ego: estimates x step length, speed x step length; each ego's class
+// (egos table: the vClass of its first entry); the ego of each warning and ego collision, for
+// rates per vehicle class.
+void LoadExposure(Loader& l) {
+  MetricsAvailability& av = l.set.available;
+  av.vehicle_hours =
+      Has(l.db, "runs", {"run_index", "step_length_s"}) && Has(l.db, "steps", {"run_index", "ego"});
+  av.vehicle_km = av.vehicle_hours && Has(l.db, "steps", {"speed_mps"});
+  av.vehicle_class = Has(l.db, "egos", {"run_index", "ego", "vehicle_class"});
+  if (!av.vehicle_hours) {
+    l.set.notes.push_back(
+        "exposure (vehicle-hours, vehicle-km) and rates: the run files have no runs.step_length_s "
+        "(a driver older than the exposure columns)");
+  } else {
+    const std::string km = av.vehicle_km ? "sum(s.speed_mps) * r.dt / 1000.0" : "0";
+    l.Each("SELECT s.run_index, s.ego, count(*) * r.dt / 3600.0, " + km +
+               " FROM steps s JOIN (SELECT run_index, max(step_length_s) AS dt FROM runs GROUP "
+               "BY run_index) r USING(run_index) GROUP BY s.run_index, s.ego",
+           [](RunMetrics& m, Statement& s) {
+             RunMetrics::EgoExposure& e = m.ego_exposure[s.Text(1)];
+             e.hours = s.Real(2);
+             e.km = s.Real(3);
+             m.vehicle_hours += e.hours;
+             m.vehicle_km += e.km;
+           });
+    if (!av.vehicle_km) l.set.notes.push_back("vehicle-km: the steps table has no speed_mps");
+  }
+  if (av.vehicle_class) {
+    l.Each("SELECT run_index, ego, vehicle_class FROM egos ORDER BY run_index, first_s DESC",
+           [](RunMetrics& m, Statement& s) { m.ego_class[s.Text(1)] = s.Text(2); });
+  } else {
+    l.set.notes.push_back(
+        "rates per vehicle class: the run files have no egos table (a driver older than it)");
+  }
+  if (l.set.available.warnings && Has(l.db, "warnings", {"ego"})) {
+    l.Each("SELECT run_index, ego FROM warnings ORDER BY run_index, start_s",
+           [](RunMetrics& m, Statement& s) { m.warning_egos.push_back(s.Text(1)); });
+  }
+  if (l.set.available.ego_collisions && MakeRunEgosTable(l.db)) {
+    l.Each(
+        "SELECT c.run_index, e.ego FROM collisions c JOIN _run_egos e ON e.run_index = "
+        "c.run_index AND e.ego IN (c.collider, c.victim) ORDER BY c.run_index, c.time_s",
+        [](RunMetrics& m, Statement& s) { m.collision_egos.push_back(s.Text(1)); });
+  }
+}
+
 }  // namespace
 
 bool MakeRunEgosTable(SqliteDb& db) {
@@ -194,6 +240,7 @@ RunMetricsSet LoadRunMetrics(SqliteDb& db, double grace_s) {
   LoadSteps(l);
   LoadCollisions(l);
   LoadWarnings(l, grace_s);
+  LoadExposure(l);
   return set;
 }
 

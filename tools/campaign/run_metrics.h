@@ -30,6 +30,17 @@ struct RunMetrics {
   long long false_alarms{0};  ///< warnings that nothing followed (view warning_outcomes)
   std::vector<std::string> false_alarm_egos;  ///< the ego of each of those warnings
   std::vector<std::string> collided_egos;     ///< egos with a collision (when egos are known)
+  // Exposure: how long and how far the egos were estimated (MetricsAvailability says whether
+  // the run files allow it).
+  double vehicle_hours{0.0};  ///< ego estimates x the run's step length
+  double vehicle_km{0.0};     ///< sum of the egos' speed x step length
+  struct EgoExposure {
+    double hours{0.0}, km{0.0};
+  };
+  std::map<std::string, EgoExposure> ego_exposure;
+  std::map<std::string, std::string> ego_class;  ///< SUMO's vClass of each ego (table egos)
+  std::vector<std::string> warning_egos;         ///< the ego of each warning
+  std::vector<std::string> collision_egos;       ///< the ego(s) in each ego collision
 };
 
 /** Which figures the database allows. */
@@ -41,6 +52,9 @@ struct MetricsAvailability {
   bool anticipation{false};
   bool warnings{false};
   bool false_alarms{false};
+  bool vehicle_hours{false};  ///< runs.step_length_s and steps
+  bool vehicle_km{false};     ///< and steps.speed_mps
+  bool vehicle_class{false};  ///< the egos table
 };
 
 struct RunMetricsSet {

@@ -86,6 +86,7 @@ json MakeRunRecord(const Plan& plan, const PlanRun& run, const std::vector<std::
   for (const auto& [name, value] : plan.GridValues(run)) r["params"][name] = value;
   r["label"] = plan.Label(run);
   r["repetition"] = run.repetition;
+  r["identity"] = plan.Identity(run);  // finds the run again when the campaign file changes
   r["command"] = command;
   r["status"] = RunStatus(child, summary);
   r["exit_code"] = child.signal ? json() : json(child.exit_code);

@@ -126,6 +126,8 @@ std::vector<Scenario> ResolveScenarios(const CampaignSpec& spec) {
     }
     for (const fs::path& f : files) {
       Scenario s;
+      s.entry = k;
+      s.line = e.line;
       s.path = fs::absolute(f).lexically_normal();
       s.rel_path = s.path.lexically_relative(spec.base_dir).string();
       if (by_path.count(s.path.string())) {

@@ -20,6 +20,8 @@ struct Scenario {
   std::filesystem::path path;  ///< absolute
   std::string rel_path;        ///< relative to the campaign file's folder (the plan's identity)
   ScenarioKind kind{ScenarioKind::kSumoConfig};
+  std::size_t entry{0};  ///< its entry of `scenarios:` (errors name it)
+  int line{0};           ///< that entry's line in the campaign file
   /** Egos for the command line: kAll (--all-vehicles) or kIds (--ego, one per ID; a vType is
    *  resolved to the IDs of its vehicles here). Unset for a scenario.cfg that names its own. */
   bool has_egos{false};

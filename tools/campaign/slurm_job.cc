@@ -75,7 +75,7 @@ SlurmJob MakeSlurmJob(const Plan& plan, const CampaignFolder& folder, const std:
     << "if [ \"$last\" -gt " << (n - 1) << " ]; then last=" << (n - 1) << "; fi\n"
     << "exec " << ShellQuote(self) << " run " << ShellQuote(plan.spec().file.string())
     << " --output " << ShellQuote(folder.dir().string()) << " --driver " << ShellQuote(driver)
-    << " --runs \"$first-$last\" -j " << st.cpus_per_task;
+    << " --runs \"$first-$last\" -j " << st.cpus_per_task << " --no-check";
   if (time_limit_s > 0) s << " --time-limit " << time_limit_s;
   s << "\n";
   job.script = s.str();

@@ -1,5 +1,6 @@
 #include "tools/campaign/table_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -23,6 +24,13 @@ std::string Cell(double v, int digits) {
 }
 
 std::string Cell(long long v) { return std::to_string(v); }
+
+std::string SigCell(std::optional<double> v, int significant) {
+  if (!v || !std::isfinite(*v)) return "";
+  if (*v == 0.0) return "0";
+  const int magnitude = static_cast<int>(std::floor(std::log10(std::fabs(*v))));
+  return Cell(*v, std::max(0, significant - 1 - magnitude));
+}
 
 void WriteCsv(const Table& t, const std::filesystem::path& file) {
   std::ofstream out(file);

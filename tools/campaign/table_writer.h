@@ -17,6 +17,9 @@ struct Table {
 std::string Cell(double v, int digits = 3);
 std::string Cell(std::optional<double> v, int digits = 3);
 std::string Cell(long long v);
+/** A number with `significant` significant digits, never in exponent form (0.000123, 4560);
+ *  "" when absent. For rates, whose size varies over orders of magnitude. */
+std::string SigCell(std::optional<double> v, int significant = 3);
 
 void WriteCsv(const Table& t, const std::filesystem::path& file);
 /** At most `max_rows` rows (0: all), with a line saying how many were left out. */

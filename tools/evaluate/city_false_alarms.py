@@ -47,6 +47,44 @@ class CityRow:
     wall_s: float = None
 
 
+@dataclass
+class ClassRow:
+    """The city run's warnings and false alarms of the egos of one vehicle class."""
+    vehicle_class: str = ""
+    egos: int = 0
+    vehicle_hours: float = 0.0
+    warnings: int = 0
+    false_alarms: int = 0
+    warnings_per_vehicle_hour: float = None
+    per_vehicle_hour: float = None
+
+
+def judge_city_by_class(run):
+    """One ClassRow per vehicle class of the run's egos (the driver's egos table; "(unknown)"
+    for an ego it lacks), judged as judge_city judges the whole run; [] for a run that did not
+    succeed."""
+    if run is None or not run.ok:
+        return []
+    class_of = {ego: run.ego_classes.get(ego) or "(unknown)" for ego in run.steps}
+    rows = []
+    for vclass in sorted(set(class_of.values())):
+        egos = [e for e, c in class_of.items() if c == vclass]
+        row = ClassRow(vehicle_class=vclass, egos=len(egos))
+        row.vehicle_hours = sum(len(run.steps[e]["time_s"]) for e in egos) * \
+            run.step_length_s / 3600.0
+        ours = {}
+        for w in run.warnings:
+            if class_of.get(w.ego) == vclass:
+                ours.setdefault(w.ego, []).append(we.Episode(w.start_s, w.end_s, w.peak_p))
+        row.warnings = sum(len(v) for v in ours.values())
+        row.false_alarms = false_alarms(run, ours) if ours else 0
+        if row.vehicle_hours > 0:
+            row.per_vehicle_hour = row.false_alarms / row.vehicle_hours
+            row.warnings_per_vehicle_hour = row.warnings / row.vehicle_hours
+        rows.append(row)
+    return rows
+
+
 def vehicle_hours(run):
     return sum(len(s["time_s"]) for s in run.steps.values()) * run.step_length_s / 3600.0
 

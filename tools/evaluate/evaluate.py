@@ -197,7 +197,7 @@ def main(argv):
         if v.loop == "closed" and v.name in runs:
             closed = [closed_loop.compare(s, runs.get(ref, {}).get(s.name),
                                           runs[v.name].get(s.name)) for s in designed]
-    city_row, city_run, city_ssm = None, None, None
+    city_row, city_run, city_ssm, city_classes = None, None, None, []
     city_folder = os.path.join(runs_dir, "city")
     if city_setting and os.path.exists(os.path.join(city_folder, "campaign.sqlite")):
         by, _ = run_data.read_campaign(city_folder)
@@ -205,6 +205,7 @@ def main(argv):
         if city_run is not None:
             city_ssm = ssm_log.read_ssm(os.path.join(city_run.folder, campaign_runs.SSM_FILE))
         city_row = city_false_alarms.judge_city(city_run, city_setting, city_ssm)
+        city_classes = city_false_alarms.judge_city_by_class(city_run)
     ref_runs = runs.get(ref, {})
     release_ratio, release_after = 0.8, 0.0
     first = next((r for r in ref_runs.values() if r.ok), None)
@@ -218,7 +219,7 @@ def main(argv):
     target_rows = targets.check(rows.get(ref, []), city_row)
     info["wall_s"]["total"] = round(time.time() - started, 1)
     report.write_all(out, designed, rows, closed, city_row, sweep, target_rows, info, runs,
-                     columns, ssm, available)
+                     columns, ssm, available, city_classes)
     info["wall_s"]["total"] = round(time.time() - started, 1)
     with open(os.path.join(out, "run_info.json"), "w", encoding="utf-8") as f:
         json.dump(info, f, indent=1)

@@ -134,7 +134,7 @@ def _info_lines(info):
 
 
 def write_all(out, designed, rows, closed, city, sweep, target_rows, info, runs, columns, ssm,
-              available):
+              available, city_classes=()):
     ref = "ours"
     wide = wide_rows(designed, rows, closed, ref)
     wide_cols = list(dict.fromkeys(k for d in wide for k in d))
@@ -154,6 +154,10 @@ def write_all(out, designed, rows, closed, city, sweep, target_rows, info, runs,
     city_cols = list(city_d[0]) if city_d else []
     if city_d:
         tables.write_csv(os.path.join(out, "city.csv"), city_d, city_cols)
+    class_d = [vars(c) for c in city_classes]
+    class_cols = list(class_d[0]) if class_d else []
+    if class_d:  # per vehicle class of the egos (SUMO's vClass)
+        tables.write_csv(os.path.join(out, "city_by_class.csv"), class_d, class_cols)
 
     # Figures.
     figs = []
@@ -211,6 +215,9 @@ def write_all(out, designed, rows, closed, city, sweep, target_rows, info, runs,
                                             "cost s", "note"]), ""]
     if city_d:
         md += ["## City-like run", "", tables.markdown(city_d, city_cols), ""]
+    if class_d:
+        md += ["## City-like run per vehicle class of the egos", "",
+               tables.markdown(class_d, class_cols), ""]
     if sweep_d:
         md += ["## Threshold sweep", "", tables.markdown(sweep_d, sweep_cols), ""]
     md += ["## Definitions", "", DEFINITIONS_TEXT, ""]
@@ -238,6 +245,9 @@ def write_all(out, designed, rows, closed, city, sweep, target_rows, info, runs,
     if city_d:
         blocks += ["<h2>City-like run</h2>",
                    cp.html_table([{k: tables.cell(v) for k, v in city_d[0].items()}])]
+    if class_d:
+        blocks += ["<h3>Per vehicle class of the egos</h3>",
+                   cp.html_table([{k: tables.cell(v) for k, v in d.items()} for d in class_d])]
     if sweep_d:
         blocks += ["<h2>Threshold sweep</h2>",
                    cp.html_table([{k: tables.cell(v) for k, v in d.items()} for d in sweep_d])]

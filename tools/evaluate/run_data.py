@@ -59,6 +59,7 @@ class Run:
     collisions: list = field(default_factory=list)
     ego_events: list = field(default_factory=list)  # (time_s, ego, event)
     critical_events: list = field(default_factory=list)  # CriticalEvent, by time
+    ego_classes: dict = field(default_factory=dict)  # ego -> SUMO's vClass (table egos)
 
     @property
     def ok(self):
@@ -143,6 +144,12 @@ def _read_tables(con, runs, key):
                 f"order by {by}time_s"):
             if index in runs:
                 runs[index].critical_events.append(CriticalEvent(t, ego, kind, other, value))
+    if "egos" in tables and "vehicle_class" in _columns(con, "egos"):
+        # An ego that came back keeps the class of its first entry.
+        for index, ego, vclass in con.execute(
+                f"select {key}, ego, vehicle_class from egos order by {by}first_s desc"):
+            if index in runs:
+                runs[index].ego_classes[ego] = vclass
     if "ego_events" in tables:
         for index, t, ego, event in con.execute(
                 f"select {key}, time_s, ego, event from ego_events order by {by}time_s"):

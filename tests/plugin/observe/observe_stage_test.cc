@@ -196,5 +196,24 @@ TEST(ObserveStage, CriticalEventsComeFromTheEgosBodies) {
   EXPECT_EQ(obs.critical_events[0].kind, CriticalEvent::Kind::kOverlap);
 }
 
+TEST(ObserveStage, ALongTrainIsNearAnEgoItsRearPasses) {
+  FakeSumoWorld w;
+  ObserveConfig all;
+  all.all_vehicles = true;
+  all.range_m = 80.0;
+  ObserveStage stage(all, &w);
+  w.AddVehicle("car", 0, 0, 0, 10);                            // northbound at the origin
+  // A 720 m freight train, its front 700 m east: its centre (340 m) is 3 cells away, its rear
+  // (-20 m) beside the car.
+  w.AddVehicle("train", 700, 5, 90, 20).length_m = 720.0;
+  w.next_report.departed = {"car", "train"};
+  w.Step();
+  const Observation obs = stage.Run();
+  ASSERT_EQ(obs.surroundings.egos.size(), 2u);
+  const SumoSurroundings::Ego& car = obs.surroundings.egos[0];
+  ASSERT_EQ(car.nearby.size(), 1u);
+  EXPECT_EQ(obs.surroundings.objects[car.nearby[0]].id, "train");
+}
+
 }  // namespace
 }  // namespace criticality::plugin

@@ -277,5 +277,50 @@ TEST(DriverOptions, AThresholdOutOfRangeNamesItsOption) {
             std::string::npos);
 }
 
+TEST(DriverOptions, CheckOptionsParsesEverythingAndExitsWithoutARun) {
+  const ParseOutcome ok =
+      Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--check-options"});
+  EXPECT_TRUE(ok.exit_now);
+  EXPECT_EQ(ok.exit_code, 0);
+  EXPECT_FALSE(Parse({"--connect", "h:1", "--ego", "e", "--output", "x"}).exit_now);
+  // A bad value is the run's error, not "options ok".
+  EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--check-options", "--act",
+                      "brak"}),
+               std::invalid_argument);
+  // The SUMO configuration must exist, as for a run.
+  EXPECT_THROW(
+      Parse({"-c", "/nonexistent/x.sumocfg", "--ego", "e", "--output", "x", "--check-options"}),
+      std::invalid_argument);
+}
+
+TEST(DriverOptions, EveryValueErrorNamesItsOptionAndValue) {
+  const std::vector<std::vector<const char*>> cases = {{"--act", "brak"},
+                                                       {"--warn-on", "p"},
+                                                       {"--warn-threshold", "-0.5"},
+                                                       {"--brake-threshold", "7"},
+                                                       {"--warn-release", "0.95"},
+                                                       {"--warn-release-after", "-1"},
+                                                       {"--brake-release", "0.99"},
+                                                       {"--act-hold", "-2"},
+                                                       {"--act-release-after", "-3"},
+                                                       {"--backend", "gpu"},
+                                                       {"--preset", "fancy"},
+                                                       {"--threads", "-4"},
+                                                       {"--range", "0"},
+                                                       {"--quiet-until", "-5"},
+                                                       {"--horizon", "-1"},
+                                                       {"--profiles", "2"},
+                                                       {"--expect", "maybe"},
+                                                       {"--warn-threshold", "abc"},
+                                                       {"--event", "1 ego fly"}};
+  for (const auto& c : cases) {
+    std::vector<const char*> args{"--connect", "h:1", "--ego", "e", "--output", "x"};
+    args.insert(args.end(), c.begin(), c.end());
+    const std::string err = ErrorOf(args);
+    EXPECT_NE(err.find(c[0]), std::string::npos) << c[0] << ": " << err;
+    EXPECT_NE(err.find(c[1]), std::string::npos) << c[0] << " " << c[1] << ": " << err;
+  }
+}
+
 }  // namespace
 }  // namespace criticality::plugin

@@ -3,8 +3,11 @@
 // no half-made file.
 #include "plugin/run/co_simulation.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sqlite3.h>
+#include <termios.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +16,7 @@
 #include "../fake_sumo_world.h"
 #include "../results_query.h"
 #include "plugin/run/exit_codes.h"
+#include "plugin/run/run_summary.h"
 
 namespace criticality::plugin {
 namespace {
@@ -66,6 +70,14 @@ TEST(CoSimulation, EveryStepGoesThroughEveryStageIntoTheDatabase) {
   EXPECT_EQ(Query(db, "select event from ego_events"), "depart");
   // The stamps are SUMO's: the first step's state is stamped 0.
   EXPECT_EQ(Query(db, "select min(time_s) from steps"), "0.0");
+  // Exposure: 20 estimates of 0.1 s, and the distance their speeds cover, as the steps say.
+  EXPECT_NEAR(summary.vehicle_hours, 20 * 0.1 / 3600.0, 1e-12);
+  EXPECT_NEAR(summary.vehicle_km,
+              std::stod(Query(db, "select sum(speed_mps) * 0.1 / 1000 from steps")), 1e-9);
+  EXPECT_GT(summary.vehicle_km, 0.0);
+  const std::string json = SummaryJson(summary);
+  EXPECT_NE(json.find("\"vehicle_hours\":"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"vehicle_km\":"), std::string::npos) << json;
   // The criticality rises as the ego closes in on the standing car (15 m/s, 60 m).
   EXPECT_LT(std::stod(Query(db, "select p_collision from steps order by time_s limit 1")),
             std::stod(Query(db, "select p_collision from steps order by time_s desc limit 1")));
@@ -121,6 +133,106 @@ TEST(CoSimulation, AScriptedEventForAVehicleNobodyDefinesIsBadInputAtItsTime) {
   // The steps before the event's time are kept.
   EXPECT_EQ(Query(db, "select status from runs"), "failed");
   EXPECT_EQ(Query(db, "select count(*) from steps"), "5");
+}
+
+// Standard error on a pseudo terminal (raw: no line-ending translation) while it lives.
+class TerminalStderr {
+ public:
+  TerminalStderr() {
+    master_ = posix_openpt(O_RDWR | O_NOCTTY);
+    grantpt(master_);
+    unlockpt(master_);
+    slave_ = ::open(ptsname(master_), O_RDWR | O_NOCTTY);
+    termios raw{};
+    tcgetattr(slave_, &raw);
+    cfmakeraw(&raw);
+    tcsetattr(slave_, TCSANOW, &raw);
+    std::fflush(stderr);
+    saved_ = ::dup(2);
+    ::dup2(slave_, 2);
+  }
+  // Standard error back; what reached the terminal.
+  std::string Stop() {
+    std::fflush(stderr);
+    ::dup2(saved_, 2);
+    ::close(saved_);
+    ::close(slave_);
+    std::string out;
+    char buf[4096];
+    for (ssize_t n; (n = ::read(master_, buf, sizeof buf)) > 0;) out.append(buf, n);
+    ::close(master_);
+    return out;
+  }
+
+ private:
+  int master_{-1}, slave_{-1}, saved_{-1};
+};
+
+TEST(ProgressLine, WhatAStepWritesStandsOnItsOwnLinesBetweenProgressLines) {
+  TerminalStderr terminal;
+  {
+    ProgressLine line(true);
+    ASSERT_TRUE(line.on());
+    line.Show("t 1.0 / 10 s");
+    line.Hold();  // a step: SUMO writes through its streams and straight to the descriptor
+    std::fprintf(stderr, "Warning: Teleporting vehicle 'a'\n");
+    ASSERT_EQ(::write(2, "Warning: no newline", 19), 19);
+    EXPECT_TRUE(line.Release());
+    line.Show("t 2.0 / 10 s");
+    line.Hold();  // a quiet step
+    EXPECT_FALSE(line.Release());
+    line.End();
+  }
+  EXPECT_EQ(terminal.Stop(),
+            "\r  t 1.0 / 10 s\033[K"                                           // the line
+            "\r\033[KWarning: Teleporting vehicle 'a'\nWarning: no newline\n"  // cleared, then SUMO
+            "\r  t 2.0 / 10 s\033[K"                                           // the line again
+            "\n");                                                             // and it stays
+}
+
+TEST(ProgressLine, OffItLeavesStandardErrorAlone) {
+  TerminalStderr terminal;
+  {
+    ProgressLine line(false);
+    EXPECT_FALSE(line.on());
+    line.Show("t 1.0 / 10 s");
+    line.Hold();
+    std::fprintf(stderr, "Warning: straight through\n");
+    EXPECT_FALSE(line.Release());
+    line.End();
+  }
+  EXPECT_EQ(terminal.Stop(), "Warning: straight through\n");
+}
+
+TEST(ProgressText, SaysSimulatedAndEndTimeShareDoneAndTimeLeft) {
+  ProgressState p;
+  p.begin_s = 0.0;
+  p.time_s = 30.0;
+  p.end_s = 120.0;
+  p.wall_s = 10.0;  // 3 simulated s per wall s: 90 s left take 30 s
+  p.steps = 300;
+  p.egos = 4;
+  p.warnings = 2;
+  p.collisions = 1;
+  const std::string t = ProgressText(p);
+  EXPECT_NE(t.find("t 30.0 / 120 s"), std::string::npos) << t;
+  EXPECT_NE(t.find(" 25 %"), std::string::npos) << t;
+  EXPECT_NE(t.find("ETA 0:30"), std::string::npos) << t;
+  EXPECT_NE(t.find("30 steps/s"), std::string::npos) << t;
+  EXPECT_NE(t.find("egos 4  warnings 2  collisions 1"), std::string::npos) << t;
+  EXPECT_EQ(t.find('\n'), std::string::npos);
+  // A run that started later: the share counts from its begin.
+  p.begin_s = 100.0;
+  p.time_s = 110.0;
+  p.end_s = 140.0;
+  p.wall_s = 3600.0;  // 10 s in an hour: 30 s left take three hours
+  EXPECT_NE(ProgressText(p).find(" 25 %  ETA 3:00:00"), std::string::npos) << ProgressText(p);
+  // No end time known: no share, no ETA.
+  p.end_s = -1.0;
+  const std::string open = ProgressText(p);
+  EXPECT_EQ(open.find('%'), std::string::npos) << open;
+  EXPECT_EQ(open.find("ETA"), std::string::npos) << open;
+  EXPECT_NE(open.find("ends when SUMO does"), std::string::npos) << open;
 }
 
 }  // namespace

@@ -226,5 +226,28 @@ TEST(LaneCorridor, VehicleAcrossItsLaneGetsNoLanes) {
   EXPECT_FALSE(SampleLaneSet(LaneCorridor{}, 40.0, Pose2{}).own);
 }
 
+TEST(LaneCorridor, ARightTurnEndingAcrossTheHeadingIsSampledShorterInsteadOfDropped) {
+  // A car westbound 30 m before a junction where its lane turns right (through two short segments) to the north,
+  // as in a netgenerate grid: sampled to the turn's end, both dividers' far samples lie across
+  // its heading at the same y, which no parabola y(x) can pass through. The lane is then
+  // sampled where the paper's frame can still follow the turn, not dropped (a vehicle without
+  // lanes is predicted straight on, through the junction).
+  LaneCorridor c;
+  // SUMO's internal lane of the turn has few points; its far sample lies on the northbound lane.
+  c.centre = {{200.0, 0.0}, {170.0, 0.0}, {166.0, 2.0}, {164.0, 6.0}, {164.0, 60.0}};
+  c.position_m = 0.0;
+  c.width_m = 3.2;
+  const LaneSet set = SampleLaneSet(c, 40.0, Pose2{200.0, 0.0, kPi});
+  ASSERT_TRUE(set.own.has_value());
+  // The lane's centre at the far sample: into the turn, beyond the straight, turning right
+  // (the vehicle's -y).
+  const Point2 far{0.5 * (set.own->left.points[2].x + set.own->right.points[2].x),
+                   0.5 * (set.own->left.points[2].y + set.own->right.points[2].y)};
+  EXPECT_LT(far.y, -0.5);
+  EXPECT_GT(far.x, 30.0);
+  EXPECT_LT(far.x, 40.0);
+  EXPECT_EQ(LaneProblem(*set.own, LaneFrameAngle(set, Params{})), "");
+}
+
 }  // namespace
 }  // namespace criticality::plugin

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "../fake_sumo_world.h"
+#include "plugin/scenes/carriages.h"
 #include "plugin/sumo/sumo_conventions.h"
 
 namespace criticality::plugin {
@@ -246,6 +247,106 @@ TEST(SceneStage, EgoCentreAndMathYawComeFromSumosFrontBumperAndNavigationAngle) 
   // Its lane runs straight ahead in its own frame, though it is vertical in the world.
   ASSERT_TRUE(s.ego.lanes.own);
   EXPECT_NEAR(s.ego.lanes.own->left.points[2].y, 1.6, 1e-9);
+}
+
+TEST(SceneStage, AParkedVehicleIsNoEgoAndBesideTheRoadNoObject) {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 300, 0, 1);
+  w.AddVehicle("ego", 50, 0, 90, 10, "E_0", 50, {"E"});
+  // Parked in a parking area beside the lane (SUMO's stop state 2 + 128): 4 m off its centre.
+  w.AddVehicle("beside", 70, -4.0, 90, 0, "E_0", 70, {"E"}).stop_state = 2 | 128;
+  // Parked on the lane itself (a parking stop without a parking area): an obstacle.
+  w.AddVehicle("on_lane", 90, 0.0, 90, 0, "E_0", 90, {"E"}).stop_state = 2;
+  // Stopped at a bus stop: a standing object, and still an ego (it will pull out).
+  w.AddVehicle("bus", 110, 0.0, 90, 0, "E_0", 110, {"E"}).stop_state = 1 | 16;
+  w.AddVehicle("ship", 60, 30.0, 90, 3).vehicle_class = "ship";  // on a waterway nearby
+  SceneStage stage = Stage(w);
+  const SceneBatch b = stage.Run(Observe(w, {"ego", "beside", "on_lane", "bus", "ship"}));
+  std::vector<std::string> egos;
+  for (size_t k = 0; k < b.scenes.size(); ++k) egos.push_back(b.EgoOf(k).id);
+  EXPECT_EQ(egos, (std::vector<std::string>{"ego", "bus"}));
+  std::vector<std::string> objects;
+  for (const Vehicle& v : b.scenes[0].vehicles) objects.push_back(v.id);
+  EXPECT_EQ(objects, (std::vector<std::string>{"bus", "on_lane"}));
+  EXPECT_EQ(stage.parked_objects(), 1);
+  EXPECT_EQ(stage.other_class_objects(), 1);
+  EXPECT_EQ(stage.parked_egos(), 2);
+}
+
+TEST(SceneStage, AHeadingJumpSumoCouldNotDriveIsReplacedByTheLanesYawRate) {
+  FakeSumoWorld w(0.1);
+  w.AddEdge("E", 0, 0, 300, 0, 1);
+  w.AddVehicle("ego", 50, 0, 90, 5.8, "E_0", 50, {"E"});
+  w.AddVehicle("other", 80, 0, 90, 5.8, "E_0", 80, {"E"});
+  SceneStage stage = Stage(w);
+  stage.Run(Observe(w, {"ego"}));
+  w.Step();
+  w.Find("other")->angle_deg = 90.0 - 27.0;  // 27 degrees in 0.1 s at 5.8 m/s: 4.7 rad/s
+  w.Find("ego")->angle_deg = 90.0 - 1.0;    // 1 degree: 0.17 rad/s, a car can
+  const Scene s = stage.Run(Observe(w, {"ego"})).scenes.at(0);
+  ASSERT_EQ(s.vehicles.size(), 1u);
+  EXPECT_NEAR(s.vehicles[0].state.yaw_rate_radps, 0.0, 1e-12);  // its straight lane's
+  EXPECT_NEAR(s.ego.state.yaw_rate_radps, (kPi / 180.0) / 0.1, 1e-9);  // kept
+  EXPECT_EQ(stage.conditioned_states(), 1);
+}
+
+TEST(SceneStage, AnAccelerationBeyondTheTypesLimitsIsBoundedByThem) {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 300, 0, 1);
+  SumoObject& ego = w.AddVehicle("ego", 50, 0, 90, 4, "E_0", 50, {"E"});
+  ego.vehicle_type = "slow";
+  ego.accel_mps2 = -60.0;  // a scripted speed drop within one step
+  VehicleTypeReport slow;
+  slow.emergency_decel_mps2 = 7.0;
+  slow.accel_mps2 = 1.3;
+  w.types["slow"] = slow;
+  SceneStage stage = Stage(w);
+  const Scene s = stage.Run(Observe(w, {"ego"})).scenes.at(0);
+  EXPECT_DOUBLE_EQ(s.ego.state.accel_mps2, -7.0);
+  EXPECT_EQ(stage.conditioned_states(), 1);
+  EXPECT_EQ(s.ego.type.emergency_decel_mps2, 7.0);  // and the estimator gets the type
+}
+
+TEST(SceneStage, WithAllVehiclesOnlyTheEgoClassesAreEstimated) {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 300, 0, 1);
+  w.AddVehicle("car", 50, 0, 90, 10, "E_0", 50, {"E"});
+  w.AddVehicle("tram", 100, 0, 90, 10, "E_0", 100, {"E"}).vehicle_class = "tram";
+  SceneConfig all;
+  all.all_vehicles = true;
+  SceneStage stage(all, w.StepLength(), true, &w, &w);
+  SceneBatch b = stage.Run(Observe(w, {"car", "tram"}));
+  ASSERT_EQ(b.scenes.size(), 1u);  // by default a tram is no ego
+  EXPECT_EQ(b.EgoOf(0).id, "car");
+  EXPECT_EQ(b.scenes[0].vehicles.at(0).type.road_user, RoadUser::kRail);  // but an object
+  all.ego_classes = ParseEgoClasses("tram");
+  SceneStage trams(all, w.StepLength(), true, &w, &w);
+  b = trams.Run(Observe(w, {"car", "tram"}));
+  ASSERT_EQ(b.scenes.size(), 1u);
+  EXPECT_EQ(b.EgoOf(0).id, "tram");
+}
+
+TEST(SceneStage, ALongVehicleIsInTheSceneWhenACarriageIsInRange) {
+  FakeSumoWorld w;
+  w.AddEdge("D", -500, 0, 0, 0, 1);
+  w.AddEdge("E", 0, 0, 500, 0, 1);
+  w.AddLink("D_0", "E_0");
+  // A 200 m train whose front is 150 m ahead of the ego's centre: its rear half is in range.
+  SumoObject& train = w.AddVehicle("train", 150, 0, 90, 0, "E_0", 150, {"D", "E"});
+  train.vehicle_class = "rail";
+  train.length_m = 200.0;
+  train.route_index = 1;
+  w.AddVehicle("ego", 2.5, 20.0, 90, 0);  // off any lane, beside the track
+  SceneStage stage = Stage(w);
+  const Scene s = stage.Run(Observe(w, {"ego"})).scenes.at(0);
+  ASSERT_EQ(s.vehicles.size(), 1u);
+  const Vehicle& v = s.vehicles[0];
+  EXPECT_LE(v.length_m, kMaxBoxLengthM);
+  ASSERT_GE(v.carriages.size(), 9u);
+  double body = v.length_m;
+  for (const Carriage& c : v.carriages) body += 1.0 + c.length_m;
+  EXPECT_NEAR(body, 200.0, 1e-6);
+  EXPECT_NEAR(v.carriages.back().x_m, 150.0 - 200.0 + 0.5 * v.carriages.back().length_m, 1e-6);
 }
 
 }  // namespace

@@ -6,12 +6,18 @@
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 tool=$1 driver=$2 work=$3
-rm -rf "$work" && mkdir -p "$work/a" "$work/b" && cd "$work" || exit 1
-echo "sumo-config = x.sumocfg" >a/scenario.cfg
-echo "sumo-config = x.sumocfg" >b/scenario.cfg
+rm -rf "$work" && mkdir -p "$work/a" "$work/b" "$work/sumo_home/bin" && cd "$work" || exit 1
+for s in a b; do
+  echo "sumo-config = x.sumocfg" >$s/scenario.cfg
+  echo '<configuration><input><net-file value="x.net.xml"/></input></configuration>' >$s/x.sumocfg
+  echo '<net/>' >$s/x.net.xml
+done
 . "$here/test_helpers.sh"  # failures, fail, check, running_in
 json_field() { sed -n "s/.*\"$1\":\([^,}]*\).*/\1/p" <<<"$2" | tail -n 1; }
 export SUMO_CRITICALITY_DRIVER=$driver
+# plan asks SUMO ($SUMO_HOME/bin/sumo) about the SUMO options: a stand-in that knows a few.
+ln -s "$here/fake_sumo.sh" sumo_home/bin/sumo
+export SUMO_HOME=$work/sumo_home
 
 # --- errors: one line, exit 2 ------------------------------------------------------------
 "$tool" >/dev/null 2>&1; check [ $? = 2 ]
@@ -27,6 +33,66 @@ printf 'output: o\nscenarios: [a/scenario.cfg]\ndriver:\n  profils: 3\n' >bad2.y
 check [ $rc = 2 ]; check grep -q "bad2.yaml:4: driver.profils: sumo-criticality has no option --profils" err
 "$tool" plan missing.yaml >/dev/null 2>err; check [ $? = 2 ]; check grep -q "cannot read" err
 "$tool" merge "$work" >/dev/null 2>err; check [ $? = 2 ]; check grep -q "not a campaign folder" err
+
+# --- plan proves every run can start ---------------------------------------------------------
+# A value the driver refuses and an option SUMO does not know: plan says so (file, line, key),
+# exit 2, before anything runs; run refuses too.
+cat >typo.yaml <<EOF
+output: out-typo
+scenarios: [a/scenario.cfg, b/scenario.cfg]
+driver:
+  act: brak
+sumo:
+  step-lenght: 0.1
+grid:
+  driver:
+    warn-threshold: [0.5, 0.9]
+EOF
+"$tool" plan typo.yaml >plan.out 2>err; rc=$?
+check [ $rc = 2 ]
+check grep -q '"can_start":false' plan.out
+check grep -q "typo.yaml:4: driver.act: sumo-criticality says: --act 'brak': use none, warn or brake (run 0: a, warn-threshold=0.5 and 3 more option sets)" err
+check grep -q "typo.yaml:6: sumo.step-lenght: sumo says: On processing option '--step-lenght': No option with the name 'step-lenght' exists." err
+check [ "$(grep -c "error:" err)" = 2 ]
+"$tool" run typo.yaml >/dev/null 2>err; check [ $? = 2 ]
+check [ ! -d out-typo/runs ]  # nothing ran
+sed -i 's/act: brak/act: warn/; s/\[0.5, 0.9\]/[-0.5, 0.9]/; s/step-lenght/step-length/' typo.yaml
+"$tool" plan typo.yaml >/dev/null 2>err; rc=$?
+check [ $rc = 2 ]
+check grep -q "typo.yaml:9: grid.driver.warn-threshold: '-0.5': sumo-criticality says: --warn-threshold -0.5: must be in (0, 1]" err
+sed -i 's/-0.5, 0.9/0.5, 0.9/' typo.yaml
+out=$("$tool" plan typo.yaml 2>err); rc=$?
+check [ $rc = 0 ]
+check grep -q "checked: 4 of 4 driver option sets through sumo-criticality --check-options" <<<"$out"
+check grep -q "checked: 2 of 2 SUMO option sets through sumo" <<<"$out"
+
+# --- a changed campaign file over a started folder ------------------------------------------
+printf 'output: out-re\nscenarios: [a/scenario.cfg]\ndriver:\n  stand-in-exit: 3\ngrid:\n  sumo:\n    seed: [1, 2]\n' >re.yaml
+"$tool" run re.yaml -j 2 >/dev/null 2>&1; check [ $? = 3 ]  # both runs fail
+# Fixed: the failed runs are redone, no flag needed.
+printf 'output: out-re\nscenarios: [a/scenario.cfg]\ngrid:\n  sumo:\n    seed: [1, 2]\n' >re.yaml
+out=$("$tool" run re.yaml -j 2 2>err); rc=$?
+check [ $rc = 0 ]
+check [ "$(json_field ok "$out")" = 2 ]
+check grep -q "to be redone (not successful or half done, and changed) (2):" err
+# A new seed: the two runs stay, one runs.
+printf 'output: out-re\nscenarios: [a/scenario.cfg]\ngrid:\n  sumo:\n    seed: [1, 2, 3]\n' >re.yaml
+out=$("$tool" plan re.yaml 2>/dev/null)
+check grep -q "kept: 2 complete runs the new plan has unchanged" <<<"$out"
+out=$("$tool" run re.yaml -j 2 2>err); rc=$?
+check [ $rc = 0 ]
+check [ "$(json_field complete_before "$out")" = 2 ]
+check [ "$(json_field ok "$out")" = 1 ]
+# A changed value: every successful run would change; only with --replan, and kept aside.
+printf 'output: out-re\nscenarios: [a/scenario.cfg]\ndriver:\n  profiles: 3\ngrid:\n  sumo:\n    seed: [1, 2, 3]\n' >re.yaml
+"$tool" run re.yaml -j 2 >/dev/null 2>err; rc=$?
+check [ $rc = 2 ]
+check grep -q "superseded (successful, but the new plan no longer has them) (3):" err
+check grep -q "run again with --replan" err
+out=$("$tool" run re.yaml -j 2 --replan 2>err); rc=$?
+check [ $rc = 0 ]
+check [ "$(json_field ok "$out")" = 3 ]
+check [ "$(ls out-re/superseded/*/ | grep -c '^0')" = 3 ]
 
 # --- plan, run, resume ---------------------------------------------------------------------
 log=$work/executions.log
@@ -150,7 +216,7 @@ script=out/slurm/campaign.sbatch
 check grep -q "^#SBATCH --array=0-5%3$" $script
 check grep -q "^#SBATCH --time=00:05:00$" $script
 check grep -q "^#SBATCH --mem=1G$" $script
-check grep -q -- "--runs \"\$first-\$last\" -j 1" $script
+check grep -q -- "--runs \"\$first-\$last\" -j 1 --no-check" $script  # slurm checked already
 check bash -n $script
 
 if [ $failures -gt 0 ]; then

@@ -21,7 +21,7 @@ Plan MakePlan(const TempDir& d, const std::string& seeds) {
   return Plan(LoadCampaignFile(d / "c.yaml"));
 }
 
-TEST(CampaignFolder, PrepareRecordsThePlanAndRefusesAnother) {
+TEST(CampaignFolder, PrepareRecordsThePlanAndTakesAChangedOneThatDropsNoResult) {
   TempDir d;
   const Plan p = MakePlan(d, "[1, 2, 3]");
   const CampaignFolder f = CampaignFolder::Prepare(d / "out", p);
@@ -29,13 +29,15 @@ TEST(CampaignFolder, PrepareRecordsThePlanAndRefusesAnother) {
   EXPECT_EQ(f.info()["fingerprint"], p.FingerprintHex());
   EXPECT_TRUE(std::filesystem::exists(d / "out/campaign.yaml"));
   EXPECT_EQ(CampaignFolder::Prepare(d / "out", p).runs(), 3u);  // the same plan again: fine
+  EXPECT_TRUE(CampaignFolder::Prepare(d / "out", p).changes().empty());
+  // Another plan over a folder without results: taken, the earlier one kept beside it
+  // (refusing a changed plan that drops results: replan_test.cc).
   const Plan other = MakePlan(d, "[1, 2]");
-  try {
-    CampaignFolder::Prepare(d / "out", other);
-    FAIL() << "another plan in the same folder must be refused";
-  } catch (const CampaignError& e) {
-    EXPECT_NE(std::string(e.what()).find("holds another plan"), std::string::npos);
-  }
+  const CampaignFolder g = CampaignFolder::Prepare(d / "out", other);
+  EXPECT_EQ(g.runs(), 2u);
+  EXPECT_EQ(g.info()["fingerprint"], other.FingerprintHex());
+  EXPECT_FALSE(g.changes().empty());
+  EXPECT_TRUE(std::filesystem::exists(d / "out" / ("campaign." + p.FingerprintHex() + ".json")));
   EXPECT_THROW(CampaignFolder::Open(d / "nothing"), CampaignError);
 }
 

@@ -63,6 +63,44 @@ check [ "$(q "select count(*) from plan_params where name = 'profiles'")" = 12 ]
 check [ "$(grep -c '^rear_end,\|^crossing_right_of_way,\|^motorway,' out/report/summary.csv)" = 6 ]
 check grep -q "^rear_end,6,2,2,0,2,2,2," out/report/summary.csv
 
+# The driver's own exposure (its summary) is what the report computes from the steps.
+check [ "$(q "select count(*) from campaign_runs r where abs(json_extract(r.summary,
+  '$.vehicle_hours') - (select count(*) * max(u.step_length_s) / 3600.0 from steps s, runs u
+  where s.run_index = r.run_index and u.run_index = r.run_index)) > 1e-9")" = 0 ]
+check [ "$(q "select count(*) from campaign_runs r where abs(json_extract(r.summary,
+  '$.vehicle_km') - (select sum(s.speed_mps) * max(u.step_length_s) / 1000.0 from steps s, runs u
+  where s.run_index = r.run_index and u.run_index = r.run_index)) > 1e-6")" = 0 ]
+check [ "$(q "select count(*) from report_exposure where vehicle_class = 'passenger'")" = 12 ]
+check grep -q "^all runs,(all),-,(all),ego collisions,8,12," out/report/rates.csv
+if /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then
+  check [ "$(ls out/report/scenes/*.png 2>/dev/null | wc -l)" -ge 1 ]  # warning scenes, replayed
+fi
+
+# plan proves the runs can start, through the real driver and SUMO: a value the driver refuses,
+# an option SUMO does not know, and a collision action it does not know.
+cat >typo.yaml <<YAML
+output: out-typo
+scenarios: [$scenarios/rear_end/scenario.cfg]
+driver:
+  act: brak
+sumo:
+  step-lenght: 0.1
+grid:
+  sumo:
+    collision.action: [warn, explode]
+YAML
+"$tool" plan typo.yaml --driver "$driver" >plan.out 2>plan.err; rc=$?
+check [ $rc = 2 ]
+check grep -q "typo.yaml:4: driver.act: sumo-criticality says: --act 'brak': use none, warn or brake" plan.err
+check grep -q "typo.yaml:6: sumo.step-lenght: sumo says: On processing option '--step-lenght': No option with the name 'step-lenght' exists." plan.err
+sed -i 's/act: brak/act: warn/; s/step-lenght/step-length/' typo.yaml
+"$tool" plan typo.yaml --driver "$driver" >plan.out 2>plan.err; rc=$?
+check [ $rc = 2 ]
+check grep -q "typo.yaml:9: grid.sumo.collision.action: 'explode': sumo says: Invalid collision.action 'explode'." plan.err
+sed -i 's/, explode//' typo.yaml
+"$tool" plan typo.yaml --driver "$driver" >plan.out 2>plan.err
+check [ $? = 0 ]
+
 if [ $failures -gt 0 ]; then
   echo "$failures check(s) failed (work folder $work)" >&2
   exit 1

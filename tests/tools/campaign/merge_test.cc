@@ -84,7 +84,7 @@ TEST(Merge, ColumnsAndTablesOfNewerRunFilesArePickedUp) {
   const Plan p = MakePlan(d, "  driver:\n    stand-in-newer: [false, true]\n");
   RunAll(p, d);
   const MergeTotals t = MergeCampaign(CampaignFolder::Open(d / "out"));
-  EXPECT_EQ(t.tables, 6u);  // + ego_events
+  EXPECT_EQ(t.tables, 8u);  // + ego_events, egos, warning_scenes
   SqliteDb db(t.database.string(), false);
   const auto cols = db.Columns("warnings");
   EXPECT_NE(std::find(cols.begin(), cols.end(), "edge"), cols.end());

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <utility>
 
@@ -9,6 +10,7 @@
 #include "tools/campaign/hotspots.h"
 #include "tools/campaign/merge.h"
 #include "tools/campaign/run_campaign.h"
+#include "tools/campaign/sqlite_db.h"
 
 namespace criticality::campaign {
 namespace {
@@ -20,15 +22,15 @@ using testing::WriteFile;
 
 // The stand-in collides at t = 1.0 unless it brakes; it warns at 0.6 (until 1.1): a warned
 // run has one ego collision anticipated by 0.4 s, a braking run none (one avoided).
-CampaignFolder RunCampaignOf(const TempDir& d, const std::string& driver_extra,
-                             bool collide = true) {
+CampaignFolder RunCampaignOf(const TempDir& d, const std::string& driver_extra, bool collide = true,
+                             const std::string& driver_axes = "") {
   WriteFile(d / "a/scenario.cfg", "sumo-config = x.sumocfg\n");
   WriteFile(d / "b/scenario.cfg", "sumo-config = x.sumocfg\n");
   WriteFile(d / "c.yaml",
             std::string("output: out\nscenarios: [a/scenario.cfg, b/scenario.cfg]\ndriver:\n") +
                 (collide ? "  stand-in-collide: 1.0\n" : "") + "  stand-in-warn: 0.6\n" +
-                driver_extra +
-                "grid:\n  driver:\n    act: [warn, brake]\n  sumo:\n    seed: [1, 2]\n");
+                driver_extra + "grid:\n  driver:\n    act: [warn, brake]\n" + driver_axes +
+                "  sumo:\n    seed: [1, 2]\n");
   const Plan p(LoadCampaignFile(d / "c.yaml"));
   RunOptions o;
   o.jobs = 2;
@@ -189,10 +191,24 @@ TEST(Report, NewerRunFilesLocateWarningsAndMissingColumnsAreNoted) {
   const CampaignFolder newer = RunCampaignOf(d, "  stand-in-newer: true\n");
   const ReportResult r = MakeReport(newer, NoPlots());
   const auto hot = Csv(r.dir / "hotspots.csv");
-  ASSERT_FALSE(hot.empty());
+  ASSERT_EQ(hot.size(), 4u);  // per scenario and setting
+  EXPECT_EQ(hot[0].at("scenario"), "a");
+  EXPECT_EQ(hot[0].at("parameters"), "act=warn");
   EXPECT_EQ(hot[0].at("id"), "e1");
-  EXPECT_EQ(hot[0].at("warnings"), "4");  // per scenario: 2 warn + 2 brake runs
+  EXPECT_EQ(hot[0].at("warnings"), "2");  // its 2 seeds
   EXPECT_EQ(hot[0].at("collisions"), "2");
+  EXPECT_EQ(hot[1].at("parameters"), "act=brake");
+  EXPECT_EQ(hot[1].at("warnings"), "2");
+  EXPECT_EQ(hot[1].at("collisions"), "0");  // braking avoided them
+  const auto points = Csv(r.dir / "events.csv");
+  bool collision_point = false;
+  for (const auto& p : points) {
+    if (p.at("event") != "collision") continue;
+    collision_point = true;
+    EXPECT_EQ(p.at("parameters"), "act=warn");
+    EXPECT_EQ(p.at("time_s"), "1");
+  }
+  EXPECT_TRUE(collision_point);
   for (const auto& n : r.notes) EXPECT_EQ(n.find("warning locations"), std::string::npos) << n;
 
   TempDir d2;
@@ -205,6 +221,129 @@ TEST(Report, NewerRunFilesLocateWarningsAndMissingColumnsAreNoted) {
   bool noted = false;
   for (const auto& n : r2.notes) noted = noted || n.find("anticipation_s") != std::string::npos;
   EXPECT_TRUE(noted);
+}
+
+double Number(const std::map<std::string, std::string>& row, const std::string& key) {
+  return std::stod(row.at(key));
+}
+
+const std::map<std::string, std::string>& RateRow(
+    const std::vector<std::map<std::string, std::string>>& rows, const std::string& breakdown,
+    const std::string& measure, const std::string& parameters = "-",
+    const std::string& vehicle_class = "(all)", const std::string& scenario = "(all)") {
+  for (const auto& r : rows) {
+    if (r.at("breakdown") == breakdown && r.at("measure") == measure &&
+        r.at("parameters") == parameters && r.at("vehicle_class") == vehicle_class &&
+        r.at("scenario") == scenario)
+      return r;
+  }
+  static const std::map<std::string, std::string> none;
+  ADD_FAILURE() << "no rates row " << breakdown << " / " << measure << " / " << parameters;
+  return none;
+}
+
+// Each stand-in run: 10 estimates of 0.1 s at 10 m/s: 1/3600 h and 0.01 km. The 4 act=warn runs
+// collide once each, the 4 act=brake runs do not.
+TEST(Report, ExposureAndRatesWithIntervalsAcrossSeeds) {
+  TempDir d;
+  const CampaignFolder f = RunCampaignOf(d, "  stand-in-newer: true\n");
+  const ReportResult r = MakeReport(f, NoPlots());
+  const auto per_run = Csv(r.dir / "exposure.csv");
+  ASSERT_EQ(per_run.size(), 8u);
+  EXPECT_NEAR(Number(per_run[0], "vehicle_hours"), 1.0 / 3600, 1e-7);
+  EXPECT_NEAR(Number(per_run[0], "vehicle_km"), 0.01, 1e-9);
+  EXPECT_EQ(per_run[0].at("ego_collisions"), "1");
+  const auto rates = Csv(r.dir / "rates.csv");
+  const auto& all = RateRow(rates, "all runs", "ego collisions");
+  EXPECT_EQ(all.at("events"), "4");
+  EXPECT_EQ(all.at("runs"), "8");
+  EXPECT_NEAR(Number(all, "per_vehicle_hour"), 4 / (8.0 / 3600), 1e-6);  // 1800
+  // Runs of 1 and 0 collisions around a rate of 0.5 per run: SE = sqrt(8/7 * 8 * 0.25) / 8 per
+  // run, t(7) = 2.365.
+  const double half = 2.365 * std::sqrt(8.0 / 7 * 2) / 8 * 3600;
+  EXPECT_NEAR(Number(all, "per_vehicle_hour_low"), 1800 - half, 2.0);
+  EXPECT_NEAR(Number(all, "per_vehicle_hour_high"), 1800 + half, 2.0);
+  EXPECT_EQ(all.at("interval"), "runs");
+  EXPECT_NEAR(Number(all, "per_million_vehicle_km"), 4 / 0.08 * 1e6, 1.0);
+  // Per setting: act=warn collides in each of its runs (no spread), act=brake never (Poisson).
+  const auto& warn = RateRow(rates, "parameter", "ego collisions", "act=warn");
+  EXPECT_NEAR(Number(warn, "per_vehicle_hour"), 3600, 1e-6);
+  EXPECT_NEAR(Number(warn, "per_vehicle_hour_low"), 3600, 1e-6);
+  EXPECT_NEAR(Number(warn, "per_vehicle_hour_high"), 3600, 1e-6);
+  const auto& brake = RateRow(rates, "parameter", "ego collisions", "act=brake");
+  EXPECT_EQ(brake.at("events"), "0");
+  EXPECT_EQ(Number(brake, "per_vehicle_hour"), 0.0);
+  EXPECT_NEAR(Number(brake, "per_vehicle_hour_high"), 3.689 / (4.0 / 3600), 2.0);
+  EXPECT_EQ(brake.at("interval"), "poisson");
+  // The braking runs' warnings are no false alarms (their twins collided).
+  EXPECT_EQ(RateRow(rates, "parameter", "false alarms", "act=brake").at("events"), "0");
+  // Per vehicle class, and the same in the campaign database.
+  const auto classes = Csv(r.dir / "by_vehicle_class.csv");
+  ASSERT_EQ(classes.size(), 1u);
+  EXPECT_EQ(classes[0].at("vehicle_class"), "passenger");
+  EXPECT_EQ(classes[0].at("runs"), "8");
+  EXPECT_EQ(classes[0].at("ego_collisions"), "4");
+  EXPECT_EQ(RateRow(rates, "vehicle class", "warnings", "-", "passenger").at("events"), "8");
+  SqliteDb db((f.dir() / "campaign.sqlite").string(), false);
+  Statement s = db.Prepare(
+      "SELECT count(*), sum(vehicle_hours), sum(vehicle_km), sum(ego_collisions) FROM "
+      "report_exposure");
+  ASSERT_TRUE(s.Step());
+  EXPECT_EQ(s.Int(0), 8);
+  EXPECT_NEAR(s.Real(1), 8.0 / 3600, 1e-9);
+  EXPECT_NEAR(s.Real(2), 0.08, 1e-9);
+  EXPECT_EQ(s.Int(3), 4);
+  const auto summary = Csv(r.dir / "summary.csv");
+  EXPECT_NEAR(Number(summary[0], "vehicle_hours"), 2.0 / 3600, 1e-7);
+  EXPECT_NE(ReadFile(r.dir / "summary.md").find("## Rates per exposure"), std::string::npos);
+}
+
+TEST(Report, RatesSplitByVehicleClass) {
+  TempDir d;
+  const CampaignFolder f = RunCampaignOf(d, "  stand-in-newer: true\n", true,
+                                         "    stand-in-class: [passenger, truck]\n");
+  const ReportResult r = MakeReport(f, NoPlots());
+  const auto classes = Csv(r.dir / "by_vehicle_class.csv");
+  ASSERT_EQ(classes.size(), 2u);
+  EXPECT_EQ(classes[1].at("vehicle_class"), "truck");
+  EXPECT_EQ(classes[1].at("runs"), "8");
+  EXPECT_EQ(classes[1].at("ego_collisions"), "4");
+  const auto rates = Csv(r.dir / "rates.csv");
+  EXPECT_NEAR(
+      Number(RateRow(rates, "vehicle class", "ego collisions", "-", "truck"), "per_vehicle_hour"),
+      1800, 1e-6);
+}
+
+TEST(Report, OlderRunFilesSayExposureIsNotComputable) {
+  TempDir d;
+  const ReportResult r = MakeReport(RunCampaignOf(d, ""), NoPlots());
+  bool noted = false;
+  for (const auto& n : r.notes) noted = noted || n.find("runs.step_length_s") != std::string::npos;
+  EXPECT_TRUE(noted);
+  EXPECT_TRUE(Csv(r.dir / "rates.csv").empty());
+  EXPECT_EQ(Csv(r.dir / "summary.csv")[0].at("vehicle_hours"), "");
+  EXPECT_NE(ReadFile(r.dir / "summary.md").find("exposure (vehicle-hours, vehicle-km) and rates"),
+            std::string::npos);
+}
+
+TEST(Report, TheWarningListSaysWhatFollowedEachWarningAndWhetherItsSceneWasKept) {
+  TempDir d;
+  const ReportResult r = MakeReport(RunCampaignOf(d, "  stand-in-newer: true\n"), NoPlots());
+  const auto w = Csv(r.dir / "warnings.csv");
+  ASSERT_EQ(w.size(), 8u);
+  EXPECT_EQ(w[0].at("parameters"), "act=warn");
+  EXPECT_EQ(w[0].at("outcome"), "collision");
+  EXPECT_EQ(w[0].at("vehicle_class"), "passenger");
+  EXPECT_EQ(w[0].at("start_s"), "0.6");
+  EXPECT_EQ(w[0].at("warning_id"), "1");
+  EXPECT_EQ(w[0].at("scene"), "yes");
+  EXPECT_EQ(w[2].at("parameters"), "act=brake");
+  EXPECT_EQ(w[2].at("outcome"), "avoided");  // its act=warn twin collided
+  TempDir d2;
+  const auto old = Csv(MakeReport(RunCampaignOf(d2, "", false), NoPlots()).dir / "warnings.csv");
+  ASSERT_EQ(old.size(), 8u);
+  EXPECT_EQ(old[0].at("outcome"), "false alarm");
+  EXPECT_EQ(old[0].at("scene"), "no");  // older run files keep no scenes
 }
 
 TEST(Hotspots, LanesAndInternalLanesMapToEdgesAndJunctions) {

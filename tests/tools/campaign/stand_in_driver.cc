@@ -14,10 +14,14 @@
 //   --stand-in-overlap T     a critical event at T: ego's body overlaps person "p1" (table
 //                            critical_events, as the driver writes it)
 //   --stand-in-newer         write the columns and tables of a newer driver (warnings x_m, y_m,
-//                            edge; collisions x_m, y_m, involves_ego; an ego_events table)
+//                            edge; collisions x_m, y_m, involves_ego; an ego_events table;
+//                            runs.step_length_s 0.1; egos: ego a "passenger"; warning_scenes)
+//   --stand-in-class C       with --stand-in-newer: the ego's vehicle class (default passenger)
 //   --stand-in-no-anticipation  a collisions table without the anticipation_s column
 //   --stand-in-no-db         write no database at all (pure process overhead)
 //   --stand-in-log FILE      append "<working directory>\n" to FILE (counts executions)
+//   --check-options          check --act and --warn-threshold as the driver does, print
+//                            "options ok" and exit 0, or the driver's one-line error and exit 2
 // The p of step k is a deterministic function of the seed (`-- --seed N`) and k.
 #include <fcntl.h>
 #include <signal.h>
@@ -62,7 +66,9 @@ const char* kOptions[] = {"config",
                           "stand-in-newer",
                           "stand-in-no-db",
                           "stand-in-no-anticipation",
-                          "stand-in-log"};
+                          "stand-in-log",
+                          "check-options",
+                          "stand-in-class"};
 
 bool Exec(sqlite3* db, const std::string& sql) {
   char* err = nullptr;
@@ -77,10 +83,12 @@ bool Exec(sqlite3* db, const std::string& sql) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string output, config, log, act = "warn";
+  std::string output, config, log, act = "warn", vclass = "passenger";
   int exit_code = 0, steps = 10, seed = 0, profiles = 6;
   double sleep_s = 0, collide = -1, warn = -1, overlap = -1;
   bool newer = false, no_db = false, ignore_term = false, no_anticipation = false;
+  bool check_options = false;
+  std::string warn_threshold = "0.9";
   std::string command;  // SQL-quoted below
   for (int i = 0; i < argc; ++i) {
     for (const char* c = argv[i]; *c; ++c)
@@ -129,6 +137,12 @@ int main(int argc, char** argv) {
       ignore_term = true;
     } else if (a == "--stand-in-log") {
       log = next();
+    } else if (a == "--stand-in-class") {
+      vclass = next();
+    } else if (a == "--check-options") {
+      check_options = true;
+    } else if (a == "--warn-threshold") {
+      warn_threshold = next();
     } else if (a == "--all-vehicles" || a == "--no-progress") {
     } else if (a.rfind("--", 0) == 0) {
       bool known = false;
@@ -139,6 +153,21 @@ int main(int argc, char** argv) {
       }
       next();
     }
+  }
+  if (check_options) {  // the driver's own checks of these two values, in its words
+    const double t = std::atof(warn_threshold.c_str());
+    if (act != "none" && act != "warn" && act != "brake") {
+      std::fprintf(stderr, "sumo-criticality: error: --act '%s': use none, warn or brake\n",
+                   act.c_str());
+      return 2;
+    }
+    if (!(t > 0.0 && t <= 1.0)) {
+      std::fprintf(stderr, "sumo-criticality: error: --warn-threshold %s: must be in (0, 1]\n",
+                   warn_threshold.c_str());
+      return 2;
+    }
+    std::printf("sumo-criticality: options ok\n");
+    return 0;
   }
   if (!log.empty()) {
     char cwd[4096] = {};
@@ -180,8 +209,10 @@ int main(int argc, char** argv) {
       return 4;
     }
     std::string schema =
-        "CREATE TABLE runs(id INTEGER PRIMARY KEY, started_utc TEXT, ended_utc TEXT, status TEXT,"
-        " sumo_version TEXT, egos TEXT, options TEXT);"
+        std::string(
+            "CREATE TABLE runs(id INTEGER PRIMARY KEY, started_utc TEXT, ended_utc TEXT, "
+            "status TEXT, sumo_version TEXT, egos TEXT, options TEXT") +
+        (newer ? ", step_length_s REAL);" : ");") +
         "CREATE TABLE steps(run_id INTEGER, time_s REAL, ego TEXT, p_collision REAL, estimator_ms"
         " REAL, objects INTEGER, speed_mps REAL, acting INTEGER);"
         "CREATE TABLE actions(run_id INTEGER, time_s REAL, ego TEXT, kind TEXT, accel_mps2 REAL,"
@@ -192,6 +223,10 @@ int main(int argc, char** argv) {
                       " TEXT, type TEXT, lane TEXT, pos_m REAL, anticipation_s REAL, x_m REAL,"
                       " y_m REAL, involves_ego INTEGER);"
                       "CREATE TABLE ego_events(run_id INTEGER, time_s REAL, ego TEXT, event TEXT);"
+                      "CREATE TABLE egos(run_id INTEGER, ego TEXT, vehicle_class TEXT, vehicle_type"
+                      " TEXT, length_m REAL, width_m REAL, first_s REAL);"
+                      "CREATE TABLE warning_scenes(warning_id INTEGER, run_id INTEGER, ego TEXT,"
+                      " time_s REAL, scene TEXT);"
                     : std::string(
                           "CREATE TABLE warnings(id INTEGER PRIMARY KEY, run_id INTEGER, ego TEXT,"
                           " start_s REAL, end_s REAL, peak_p REAL);"
@@ -201,7 +236,8 @@ int main(int argc, char** argv) {
     if (!Exec(db, schema)) return 4;
     Exec(db, "BEGIN");
     Exec(db,
-         "INSERT INTO runs VALUES(1, '2000-01-01T00:00:00Z', NULL, 'running', 'stand-in', "
+         "INSERT INTO runs(id, started_utc, ended_utc, status, sumo_version, egos, options) "
+         "VALUES(1, '2000-01-01T00:00:00Z', NULL, 'running', 'stand-in', "
          "'ego', '" +
              command + "')");
     for (int k = 1; k <= steps; ++k) {
@@ -229,7 +265,18 @@ int main(int argc, char** argv) {
                    (newer ? ", 12.5, -1.6, 1" : "") + ")");
       ++collisions;
     }
-    if (newer) Exec(db, "INSERT INTO ego_events VALUES(1, 0.1, 'ego', 'departed')");
+    if (newer) {
+      Exec(db, "INSERT INTO ego_events VALUES(1, 0.1, 'ego', 'departed')");
+      Exec(db, "UPDATE runs SET step_length_s = 0.1");
+      Exec(db, "INSERT INTO egos VALUES(1, 'ego', '" + vclass + "', 'car', 4.5, 1.8, 0.1)");
+      if (warn >= 0) {
+        // The ego on a straight lane, 'other' standing 20 m ahead: a scene file's text.
+        Exec(db, "INSERT INTO warning_scenes VALUES(1, 1, 'ego', " + std::to_string(warn) +
+                     ", 'criticality-scene 1\nego ego 0 0 0 10 0 0 0 4.5 1.8 -\nlane own 0 0 1.6 "
+                     "40 1.6 80 1.6 0 -1.6 40 -1.6 80 -1.6\nvehicle other 20 0 0 0 0 0 0 4.5 1.8 "
+                     "- 0\n')");
+      }
+    }
     if (overlap >= 0) {
       Exec(db,
            "CREATE TABLE critical_events(run_id INTEGER, time_s REAL, ego TEXT, kind TEXT, other "

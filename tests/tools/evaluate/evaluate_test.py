@@ -334,6 +334,27 @@ class CityTest(unittest.TestCase):
         self.assertEqual((row.followed_by_collision, row.followed_by_overlap), (1, 0))
 
 
+    def test_false_alarms_per_vehicle_class(self):
+        run = make_run("city", "a", [0.0] * 36000)  # a car for an hour
+        run.steps["t"] = {"time_s": times(18000), "p_collision": [0.0] * 18000}  # a truck, 0.5 h
+        run.steps["x"] = {"time_s": times(3600), "p_collision": [0.0] * 3600}  # not in egos
+        run.ego_classes = {"a": "passenger", "t": "truck"}
+        run.warnings = [run_data.Warning("a", 10.0, 11.0, 0.6), run_data.Warning("t", 5.0, 6.0, 0.6),
+                        run_data.Warning("t", 100.0, 101.0, 0.6)]
+        run.collisions = [run_data.Collision(102.5, "t", "y", 5.0, 0.0, True)]  # within 2 s
+        rows = {r.vehicle_class: r for r in city_false_alarms.judge_city_by_class(run)}
+        self.assertEqual(sorted(rows), ["(unknown)", "passenger", "truck"])
+        self.assertEqual((rows["passenger"].warnings, rows["passenger"].false_alarms), (1, 1))
+        self.assertAlmostEqual(rows["passenger"].per_vehicle_hour, 1.0)
+        self.assertEqual((rows["truck"].warnings, rows["truck"].false_alarms), (2, 1))
+        self.assertAlmostEqual(rows["truck"].vehicle_hours, 0.5)
+        self.assertAlmostEqual(rows["truck"].per_vehicle_hour, 2.0)
+        self.assertEqual(rows["(unknown)"].false_alarms, 0)
+        self.assertAlmostEqual(rows["(unknown)"].vehicle_hours, 0.1)
+        run.status = "failed"
+        self.assertEqual(city_false_alarms.judge_city_by_class(run), [])
+
+
 class TargetsTest(unittest.TestCase):
     def test_misses_say_by_how_much(self):
         def row(name, cat, ant, fp=0):
