@@ -63,8 +63,9 @@ double CpuSeconds() {
   return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
-// --record-scenes: a new or empty folder (scene files of different runs must not mix).
-void PrepareSceneFolder(const std::string& dir) {
+// --record-scenes: a new or empty folder (scene files of different runs must not mix). Returns
+// whether it made the folder.
+bool PrepareSceneFolder(const std::string& dir) {
   std::error_code ec;
   if (fs::exists(dir, ec)) {
     if (!fs::is_directory(dir, ec))
@@ -73,9 +74,11 @@ void PrepareSceneFolder(const std::string& dir) {
       throw std::invalid_argument("--record-scenes '" + dir +
                                   "' is not empty; give a new or empty folder");
     }
+    return false;
   }
   fs::create_directories(dir, ec);
   if (ec) throw std::invalid_argument("--record-scenes '" + dir + "': " + ec.message());
+  return true;
 }
 
 // The wall time of each stage of one step, and where they go.
@@ -127,7 +130,8 @@ class CoSimulation {
  private:
   // The scene folder, the database, SUMO, the stages; named egos checked before any step.
   void Start() {
-    if (!o_.record.scene_folder.empty()) PrepareSceneFolder(o_.record.scene_folder);
+    if (!o_.record.scene_folder.empty())
+      made_scene_folder_ = PrepareSceneFolder(o_.record.scene_folder);
     db_ = std::make_unique<ResultsDb>(o_.run.output);
     sum_.output = o_.run.output;
     world_ = open_(o_.run);
@@ -216,6 +220,10 @@ class CoSimulation {
     sum_.sim_time_s = t_;
     sum_.egos = observe_->EgosSeen();
     sum_.invalid_objects = scenes_->invalid_objects();
+    sum_.conditioned_states = scenes_->conditioned_states();
+    sum_.parked_objects = scenes_->parked_objects();
+    sum_.other_class_objects = scenes_->other_class_objects();
+    sum_.parked_egos = scenes_->parked_egos();
     sum_.ego_events += static_cast<long long>(obs.ego_events.size());
     for (const CollisionEvent& c : obs.collisions) {
       ++sum_.collisions;
@@ -298,6 +306,10 @@ class CoSimulation {
     sum_.wall_s = Seconds(Clock::now() - wall0_);
     sum_.max_rss_mb = MaxRssMb();
     sum_.cpu_s = CpuSeconds();
+    if (!stepped_ && status != "completed" && made_scene_folder_) {
+      std::error_code ec;  // a run that failed before its first step leaves no empty folder
+      if (fs::is_empty(o_.record.scene_folder, ec)) fs::remove(o_.record.scene_folder, ec);
+    }
     if (!db_) return;
     if (!stepped_ && status != "completed") {
       db_->Discard();
@@ -318,6 +330,7 @@ class CoSimulation {
   RunSummary& sum_;
   const OpenWorld& open_;
   const Clock::time_point wall0_;
+  bool made_scene_folder_{false};
   std::unique_ptr<ResultsDb> db_;
   std::unique_ptr<SumoWorld> world_;
   // The stages of a step, in the order data flows.

@@ -48,7 +48,11 @@ std::string SummaryJson(const RunSummary& s) {
     << ",\"estimates\":" << s.estimates << ",\"vehicle_hours\":" << Num(s.vehicle_hours)
     << ",\"vehicle_km\":" << Num(s.vehicle_km) << ",\"shortcut_estimates\":" << s.shortcut_estimates
     << ",\"objects_out_of_reach\":" << s.objects_out_of_reach
-    << ",\"invalid_objects\":" << s.invalid_objects << ",\"warnings\":" << s.warnings
+    << ",\"invalid_objects\":" << s.invalid_objects
+    << ",\"conditioned_states\":" << s.conditioned_states
+    << ",\"parked_objects\":" << s.parked_objects
+    << ",\"other_class_objects\":" << s.other_class_objects
+    << ",\"parked_egos\":" << s.parked_egos << ",\"warnings\":" << s.warnings
     << ",\"actions\":" << s.actions << ",\"collisions\":" << s.collisions
     << ",\"ego_collisions\":" << s.ego_collisions << ",\"ego_events\":" << s.ego_events
     << ",\"time_s\":{\"sumo\":" << Num(s.times.sumo_s) << ",\"observe\":" << Num(s.times.observe_s)

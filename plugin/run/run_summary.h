@@ -34,6 +34,11 @@ struct RunSummary {
   long long shortcut_estimates{0};  ///< answered p = 0 without trajectories (no object in reach)
   long long objects_out_of_reach{0};
   long long invalid_objects{0};  ///< object reads left out of scenes (NaN values)
+  /** Object reads whose yaw rate or acceleration was made plausible (object_reading.h). */
+  long long conditioned_states{0};
+  long long parked_objects{0};       ///< vehicle reads left out: parked beside the road
+  long long other_class_objects{0};  ///< vehicle reads left out: no road user (ship, aircraft)
+  long long parked_egos{0};          ///< ego reads not estimated: the ego was parked
   long long warnings{0};
   long long actions{0};
   long long collisions{0};

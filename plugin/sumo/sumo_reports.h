@@ -65,7 +65,7 @@ struct SumoCollision {
    *  network to be read; NaN otherwise (the observe stage then places it from lane and pos). */
   double x_m{0.0}, y_m{0.0};
   double collider_speed_mps{0.0}, victim_speed_mps{0.0};
-  bool collider_present{true};  ///< still in the network when the collision was read
+  bool collider_present{true};  ///< still on the lane where it collided when it was read
 };
 
 /** SUMO's lists for the step just made. */

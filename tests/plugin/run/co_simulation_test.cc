@@ -109,6 +109,37 @@ TEST(CoSimulation, EachEgoIsRecordedWithItsClassAndEachWarningWithItsScene) {
   EXPECT_NE(scene.find("vehicle standing"), std::string::npos);
 }
 
+// The road with a car parked beside it (a parking area: SUMO's stop state 2 + 128) and a ship
+// on a waterway nearby; the ego and the parked car are named egos.
+std::unique_ptr<SumoWorld> RoadWithParkedCarAndShip(const RunConfig& run) {
+  std::unique_ptr<SumoWorld> w = Road(run);
+  auto* f = static_cast<FakeSumoWorld*>(w.get());
+  f->AddVehicle("parked", 120, -5.6, 90, 0, "E_0", 120, {"E"}).stop_state = 2 | 128;
+  f->AddVehicle("ship", 110, 30.0, 90, 3).vehicle_class = "ship";
+  f->next_report.departed = {"ego", "standing", "parked", "ship"};
+  return w;
+}
+
+TEST(CoSimulation, TheSummaryCountsParkedAndOtherClassReadsPerStep) {
+  const std::string db = Output("parked.sqlite");
+  DriverOptions o = Options(db);
+  o.observe.egos = {"ego", "parked"};
+  RunSummary summary;
+  ASSERT_EQ(RunDriver(o, &summary, RoadWithParkedCarAndShip), kExitDone) << summary.error;
+  EXPECT_EQ(summary.steps, 20);
+  EXPECT_EQ(summary.estimates, 20);     // the ego only: the parked car is no ego
+  EXPECT_EQ(summary.parked_egos, 20);   // once per step
+  EXPECT_EQ(summary.parked_objects, 20);
+  EXPECT_EQ(summary.other_class_objects, 20);
+  EXPECT_EQ(summary.conditioned_states, 0);  // nothing implausible on this road
+  EXPECT_EQ(Query(db, "select count(*) from steps where objects = 1"), "20");  // the standing car
+  const std::string json = SummaryJson(summary);
+  for (const char* key : {"\"parked_egos\":20", "\"parked_objects\":20",
+                          "\"other_class_objects\":20", "\"conditioned_states\":0"}) {
+    EXPECT_NE(json.find(key), std::string::npos) << key << " in " << json;
+  }
+}
+
 TEST(CoSimulation, ASumoThatCannotStartIsExitThreeAndLeavesNoFile) {
   const std::string db = Output("nosumo.sqlite");
   RunSummary summary;
@@ -120,6 +151,33 @@ TEST(CoSimulation, ASumoThatCannotStartIsExitThreeAndLeavesNoFile) {
   EXPECT_NE(summary.error.find("no such network"), std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(db));
   EXPECT_TRUE(summary.output.empty());
+}
+
+TEST(CoSimulation, ARunThatFailsBeforeItsFirstStepLeavesNoSceneFolderItMade) {
+  const std::string db = Output("nosumo_scenes.sqlite");
+  const std::string made = ::testing::TempDir() + "scenes_made_by_the_run";
+  const std::string given = ::testing::TempDir() + "scenes_given_empty";
+  std::filesystem::remove_all(made);
+  std::filesystem::remove_all(given);
+  std::filesystem::create_directories(given);
+  auto no_sumo = [](const RunConfig&) -> std::unique_ptr<SumoWorld> {
+    throw SumoError("loading SUMO failed: no such network");
+  };
+  for (const std::string& folder : {made, given}) {
+    DriverOptions o = Options(db);
+    o.record.scene_folder = folder;
+    RunSummary summary;
+    EXPECT_EQ(RunDriver(o, &summary, no_sumo), kExitSumo);
+  }
+  EXPECT_FALSE(std::filesystem::exists(made));  // made by the run: removed again
+  EXPECT_TRUE(std::filesystem::is_directory(given));  // the user's own folder stays
+  // A run that steps keeps the folder it made, with the scenes in it.
+  DriverOptions o = Options(db);
+  o.record.scene_folder = made;
+  o.run.end_time_s = 0.5;
+  RunSummary summary;
+  ASSERT_EQ(RunDriver(o, &summary, CloseCall), kExitDone) << summary.error;
+  EXPECT_TRUE(std::filesystem::is_directory(made));
 }
 
 TEST(CoSimulation, AScriptedEventForAVehicleNobodyDefinesIsBadInputAtItsTime) {
