@@ -19,6 +19,10 @@ struct EgoStep {
   int objects_in_reach{0};  ///< of those, not left out by the exact reach shortcut
   bool shortcut{false};     ///< answered without trajectories (no object in reach)
   bool acting{false};       ///< the closed loop has control
+  /** The object with the largest share of p (criticality/result.h MainObject); "": none (p = 0).
+   *  A collision's anticipation counts from the first step of a warning at which its partner
+   *  was this object (plugin/record/result_views.sql). */
+  std::string main_object;
 };
 
 enum class WarningChange { kOpen, kPeak, kClose };
@@ -50,7 +54,7 @@ struct ActionEvent {
   double route_collision_probability{0.0};
   double route_probability{0.0};
   /** What the closed loop changed of the user's settings, or how it executed the route:
-   *  e.g. "speed mode 0 -> 0 (bit 2 cleared)", "lane-change mode 0 kept". */
+   *  e.g. "speed mode 31 kept (bit 2: decel raised to emergencyDecel while braking)", "lane-change mode 0 kept". */
   std::string detail;
 };
 

@@ -90,6 +90,7 @@ EgoStep ActStage::Row(const ObjectSnapshot& ego, const Result& r) const {
   for (const ObjectResult& obj : r.objects) step.objects_in_reach += obj.out_of_reach ? 0 : 1;
   step.shortcut = r.answered_by_reach_shortcut;
   step.acting = closed_loop_.Acting(ego.id);
+  if (const ObjectResult* main = MainObject(r)) step.main_object = main->id;
   return step;
 }
 

@@ -75,7 +75,8 @@ SpeedCommand ClosedLoopSpeed(const SpeedInputs& in, const BrakeModel& model, dou
   a = std::max(a, -e);
   out.command = true;
   out.accel_mps2 = a;
-  out.speed_mps = std::min(in.own_speed_mps, std::max(0.0, in.speed_mps + a * step_s));
+  const double lowest = std::max(0.0, in.speed_mps - e * step_s);  // emergencyDecel, no more
+  out.speed_mps = std::max(lowest, std::min(in.own_speed_mps, in.speed_mps + a * step_s));
   return out;
 }
 

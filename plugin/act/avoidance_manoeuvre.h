@@ -68,7 +68,9 @@ struct SpeedCommand {
 
 /** The speed for the next step: min(SUMO's own choice, ours), ours = speed + a dt where a
  *  follows the route's acceleration, changing at most by the jerk limit per second and never
- *  below minus the emergency deceleration. Nothing is commanded before the first braking: until
+ *  below minus the emergency deceleration; and never below speed - emergencyDecel dt, also
+ *  where SUMO's own choice is lower (its safe speed or a scenario's forced speed asking for
+ *  more than the vehicle can brake: the vehicle brakes at its emergencyDecel then). Nothing is commanded before the first braking: until
  *  the route brakes and the brake latency has passed since the engagement began. Once active,
  *  a command every step until the engagement ends (a route that stops braking ramps the
  *  deceleration off, and one that accelerates lets SUMO's own choice win again), so the speed

@@ -7,8 +7,9 @@ namespace criticality::plugin {
 namespace {
 
 std::string SpeedModeText(int user) {
-  return "speed mode " + std::to_string(user) + " -> " + std::to_string(user & ~4) +
-         ((user & 4) ? " (bit 2 cleared: up to emergencyDecel)" : " (unchanged)");
+  return "speed mode " + std::to_string(user) + " kept" +
+         ((user & 4) ? " (bit 2: decel raised to emergencyDecel while braking)"
+                     : " (bit 2 off: decelerations unbounded by SUMO)");
 }
 
 std::string Fixed(double x) {

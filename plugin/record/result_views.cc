@@ -131,6 +131,9 @@ std::string ResultViewsSql(const ResultViewKeys& keys) {
                {"collisions", Identifier("collisions table", keys.collisions)},
                {"critical_events", Identifier("critical events table", keys.critical_events)},
                {"runs", Identifier("runs table", keys.runs)},
+               {"steps", Identifier("steps table", keys.steps)},
+               {"attributed", keys.attributed ? "1" : "0"},
+               {"step_main_object", keys.attributed ? "s.main_object" : "NULL"},
                {"grace_s", SqlRealLiteral(keys.grace_s)}});
 }
 

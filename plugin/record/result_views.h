@@ -19,6 +19,11 @@ struct ResultViewKeys {
   std::string collisions{"collisions"};
   std::string critical_events{"critical_events"};
   std::string runs{"runs"};
+  std::string steps{"steps"};
+  /** The steps name each step's main object (column main_object): a collision's anticipation
+   *  counts from the first step at which its partner was it. false: from the episode's start
+   *  (run files of drivers before the column). */
+  bool attributed{true};
   double grace_s{kDefaultGraceS};
 
   /** A driver run file: run_id, views stored in the file, the default grace. */
@@ -30,8 +35,8 @@ struct ResultViewKeys {
 /** The views' definitions as they are written (with placeholders). */
 const std::string& ResultViewsTemplate();
 
-/** CREATE VIEW statements for warning_windows, warning_outcomes, critical_event_warnings and
- *  collision_anticipation. Throws std::invalid_argument for a name that is not a plain SQL
+/** CREATE VIEW statements for warning_windows, warning_outcomes, critical_event_warnings,
+ *  collision_warnings and collision_anticipation. Throws std::invalid_argument for a name that is not a plain SQL
  *  identifier (letters, digits, '_', '.') or a grace that is not finite. */
 std::string ResultViewsSql(const ResultViewKeys& keys);
 

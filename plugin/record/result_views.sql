@@ -13,6 +13,10 @@
 --   {{collisions}}       SUMO's collisions: {{run_key}}, time_s, collider, victim
 --   {{critical_events}}  the egos' critical events: {{run_key}}, time_s, ego, kind
 --   {{runs}}             the runs: {{runs_key}}, step_length_s
+--   {{steps}}            the egos' steps: {{run_key}}, ego, time_s (and main_object)
+--   {{attributed}}       1: the steps name each step's main object, s.main_object; 0: they do
+--                        not (run files of older drivers)
+--   {{step_main_object}} s.main_object, or NULL where {{attributed}} is 0
 --   {{grace_s}}          seconds after an episode's end within which what follows still counts
 --                        (a number; default 2.0, the evaluation's)
 -- Inside the views other views are named without a schema: a view stored in a file may name
@@ -65,24 +69,44 @@ SELECT e.{{run_key}} AS {{run_key}}, e.time_s AS time_s, e.ego AS ego, e.kind AS
                  AND e.time_s >= w.start_s AND e.time_s <= w.window_end_s) AS warned
 FROM {{critical_events}} e;
 
--- Each collision with its anticipation: the collision time minus the start of the latest
--- episode of its collider or victim that began before it and was still open at it (end_s NULL,
--- or at or after it) or ended at most one step (the run's step_length_s, plus 1e-6 s for the
--- rounding of the times) before it; NULL when there is none. "Began before": the driver writes a
--- step's collisions before that step's warnings, so an episode that opens at the impact does
--- not anticipate it. This is the rule by which the driver fills collisions.anticipation_s when
--- it records a collision (the same arithmetic, so the same value).
+-- Each collision with the episodes that may have anticipated it: the episodes of its collider
+-- or victim that began before it and were still open at it (end_s NULL, or at or after it) or
+-- ended at most one step (the run's step_length_s, plus 1e-6 s for the rounding of the times)
+-- before it. "Began before": the driver writes a step's collisions before that step's warnings,
+-- so an episode that opens at the impact does not anticipate it. credited_s is when the episode
+-- warned of this collision: the first of its steps before the impact at which the collision
+-- partner (the other of collider and victim) was the object with the largest share of p
+-- ({{steps}}.main_object); NULL when it never was (the episode warned of something else). Where
+-- the steps name no main object ({{attributed}} 0: run files of older drivers) every episode is
+-- credited from its start.
+CREATE VIEW {{schema}}.collision_warnings AS
+SELECT c.rowid AS collision_rowid, c.{{run_key}} AS {{run_key}}, w.ego AS ego,
+       w.start_s AS start_s,
+       CASE WHEN {{attributed}} THEN
+         (SELECT min(s.time_s) FROM {{steps}} s
+          WHERE s.{{run_key}} = w.{{run_key}} AND s.ego = w.ego
+            AND s.time_s >= w.start_s AND s.time_s < c.time_s
+            AND (w.end_s IS NULL OR s.time_s <= w.end_s)
+            AND {{step_main_object}} = CASE WHEN w.ego = c.collider THEN c.victim
+                                       ELSE c.collider END)
+       ELSE w.start_s END AS credited_s
+FROM {{collisions}} c JOIN {{warnings}} w
+  ON w.{{run_key}} = c.{{run_key}} AND w.ego IN (c.collider, c.victim) AND w.start_s < c.time_s
+ AND (w.end_s IS NULL OR
+      w.end_s >= c.time_s - ((SELECT r.step_length_s FROM {{runs}} r
+                              WHERE r.{{runs_key}} = c.{{run_key}}) + 1e-6));
+
+-- Each collision with its anticipation: the collision time minus the credited time of the latest
+-- of those episodes that warned of it (collision_warnings, credited_s not NULL); NULL when none
+-- did. This is the rule by which the driver fills collisions.anticipation_s when it records a
+-- collision (the same arithmetic, so the same value).
 CREATE VIEW {{schema}}.collision_anticipation AS
 SELECT k.collision_rowid AS collision_rowid, k.{{run_key}} AS {{run_key}}, k.time_s AS time_s,
        k.collider AS collider, k.victim AS victim, k.warning_start_s AS warning_start_s,
        k.time_s - k.warning_start_s AS anticipation_s
 FROM (SELECT c.rowid AS collision_rowid, c.{{run_key}} AS {{run_key}}, c.time_s AS time_s,
              c.collider AS collider, c.victim AS victim,
-             (SELECT w.start_s FROM {{warnings}} w
-              WHERE w.{{run_key}} = c.{{run_key}} AND w.ego IN (c.collider, c.victim)
-                AND w.start_s < c.time_s
-                AND (w.end_s IS NULL OR
-                     w.end_s >= c.time_s - ((SELECT r.step_length_s FROM {{runs}} r
-                                             WHERE r.{{runs_key}} = c.{{run_key}}) + 1e-6))
-              ORDER BY w.start_s DESC LIMIT 1) AS warning_start_s
+             (SELECT cw.credited_s FROM collision_warnings cw
+              WHERE cw.collision_rowid = c.rowid AND cw.credited_s IS NOT NULL
+              ORDER BY cw.start_s DESC LIMIT 1) AS warning_start_s
       FROM {{collisions}} c) k;

@@ -22,7 +22,7 @@ CREATE TABLE steps(
   run_id INTEGER NOT NULL REFERENCES runs(id), time_s REAL NOT NULL, ego TEXT NOT NULL,
   p_collision REAL NOT NULL, estimator_ms REAL NOT NULL, objects INTEGER NOT NULL,
   objects_in_reach INTEGER NOT NULL, speed_mps REAL NOT NULL, acting INTEGER NOT NULL,
-  p_reference REAL NOT NULL, unavoidability REAL NOT NULL);
+  p_reference REAL NOT NULL, unavoidability REAL NOT NULL, main_object TEXT);
 CREATE TABLE warnings(
   id INTEGER PRIMARY KEY, run_id INTEGER NOT NULL REFERENCES runs(id), ego TEXT NOT NULL,
   start_s REAL NOT NULL, end_s REAL, peak_p REAL NOT NULL, x_m REAL, y_m REAL, edge TEXT,
@@ -105,7 +105,7 @@ ResultsDb::ResultsDb(const std::string& path) : path_(path) {
     Exec("PRAGMA journal_mode=WAL");
     Exec("PRAGMA synchronous=NORMAL");
     Exec(kSchema);
-    step_ = Prepare("INSERT INTO steps VALUES(?,?,?,?,?,?,?,?,?,?,?)");
+    step_ = Prepare("INSERT INTO steps VALUES(?,?,?,?,?,?,?,?,?,?,?,?)");
     open_warning_ = Prepare(
         "INSERT INTO warnings(run_id,ego,start_s,end_s,peak_p,x_m,y_m,edge,object) "
         "VALUES(?,?,?,NULL,?,?,?,?,?)");
@@ -227,6 +227,7 @@ void ResultsDb::AddStep(double time_s, const EgoStep& r) {
   sqlite3_bind_int(step_, 9, r.acting ? 1 : 0);
   sqlite3_bind_double(step_, 10, r.p_reference);
   sqlite3_bind_double(step_, 11, r.unavoidability);
+  BindOptionalText(step_, 12, r.main_object);
   Step(step_, "step");
 }
 

@@ -69,13 +69,14 @@ class SumoWorld : public RoadNetwork, public TrafficView {
   // ---- The closed loop (--act brake; plugin/act/closed_loop.cc) ---------------------------
   /** What acting on a vehicle needs, read now (before this step's commands). */
   virtual VehicleControl ReadControl(const std::string& vehicle) = 0;
-  /** Commands `speed` for the next step, under the user's speed mode with "regard maximum
-   *  deceleration" (bit 2) cleared so that SUMO applies a deceleration up to the type's
-   *  emergencyDecel (the caller never asks for more). Scripted speed events for the vehicle
-   *  are then recorded (ReadControl's own speed includes them) but not sent until
+  /** Commands `speed` for the next step, under the user's speed mode; with "regard maximum
+   *  deceleration" (bit 2) set the vehicle's decel is its emergencyDecel until ReleaseSpeed,
+   *  so that SUMO applies a deceleration up to emergencyDecel and never more, to our speed and
+   *  to its own safe speed (the caller never asks for more). Scripted speed events for the
+   *  vehicle are then recorded (ReadControl's own speed includes them) but not sent until
    *  ReleaseSpeed. */
   virtual void CommandSpeed(const std::string& ego, double speed) = 0;
-  /** Hands the speed back: the speed mode the user set, and the speed a scenario forces
+  /** Hands the speed back: the type's decel, and the speed a scenario forces
    *  (setSpeed, or the rest of a slowDown still running), else setSpeed(-1). */
   virtual void ReleaseSpeed(const std::string& ego) = 0;
   /** changeLane(lane_index, hold_s): SUMO keeps trying for hold_s, subject to the vehicle's

@@ -126,9 +126,15 @@ void LoadCollisions(Loader& l) {
 
 // The result views over this database as TEMP views, with the report's grace. A table the run
 // files lack (no collisions at all, no critical_events from an older driver) is replaced by an
-// empty one: nothing of it follows a warning.
+// empty one: nothing of it follows a warning. Steps without main_object (older drivers only)
+// credit a collision's anticipation from the episode's start.
 void CreateResultViews(SqliteDb& db, double grace_s, bool collisions_ok, bool events_ok) {
   plugin::ResultViewKeys keys = plugin::ResultViewKeys::Campaign(grace_s);
+  keys.attributed = Has(db, "steps", {"run_index", "ego", "time_s", "main_object"});
+  if (!Has(db, "steps", {"run_index", "ego", "time_s"})) {
+    db.Exec("CREATE TEMP TABLE IF NOT EXISTS _no_steps(run_index, time_s, ego, main_object)");
+    keys.steps = "temp._no_steps";
+  }
   if (!collisions_ok) {
     db.Exec("CREATE TEMP TABLE IF NOT EXISTS _no_collisions(run_index, time_s, collider, victim)");
     keys.collisions = "temp._no_collisions";

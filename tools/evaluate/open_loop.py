@@ -85,6 +85,14 @@ def replay_matches(run, ego, threshold, release, column="p_collision", release_a
     return [round(e.start_s, 3) for e in mine] == [round(e.start_s, 3) for e in theirs]
 
 
+def _partner_credit(run, ego, partner, t_collision):
+    """warning_episodes.partner_credit over the ego's recorded main objects (None without)."""
+    if t_collision is None:
+        return None
+    times, mains = run.series(ego, "main_object")
+    return we.partner_credit(times, mains, partner, t_collision)
+
+
 def judge_run(scenario, variant, run, driver_help, ssm_conflicts=None):
     """The OpenLoopRow of one run of a designed scenario."""
     row = OpenLoopRow(scenario.name, scenario.category, variant)
@@ -107,7 +115,8 @@ def judge_run(scenario, variant, run, driver_help, ssm_conflicts=None):
     eps = _driver_episodes(run, ego)
     row.warnings = eps
     j = we.judge(eps, row.collision_s, scenario.quiet_until_s, step,
-                 collision_free=not scenario.collides)
+                 collision_free=not scenario.collides,
+                 credit=_partner_credit(run, ego, row.partner, row.collision_s))
     row.anticipation_s, row.not_warned_reason = j.anticipation_s, j.reason
     row.false_positives, row.false_positive_starts = j.false_positives, j.false_positive_starts
     column = warn_column(run, driver_help)

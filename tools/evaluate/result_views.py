@@ -36,14 +36,16 @@ def sql_real_literal(value):
 
 def views_sql(grace_s=DEFAULT_GRACE_S, schema="main", run_key="run_id", runs_key="id",
               warnings="warnings", collisions="collisions", critical_events="critical_events",
-              runs="runs"):
+              runs="runs", steps="steps", attributed=True):
     """The CREATE VIEW statements of result_views.sql with its placeholders filled in."""
     names = {"schema": schema, "run_key": run_key, "runs_key": runs_key, "warnings": warnings,
-             "collisions": collisions, "critical_events": critical_events, "runs": runs}
+             "collisions": collisions, "critical_events": critical_events, "runs": runs,
+             "steps": steps}
     for what, name in names.items():
         if not _IDENTIFIER.match(name):
             raise ValueError(f"result views: {what} {name!r} is not a plain SQL identifier")
-    values = dict(names, grace_s=sql_real_literal(grace_s))
+    values = dict(names, grace_s=sql_real_literal(grace_s), attributed="1" if attributed else "0",
+                  step_main_object="s.main_object" if attributed else "NULL")
     with open(SQL_FILE, encoding="utf-8") as f:
         text = f.read()
 
@@ -56,15 +58,18 @@ def views_sql(grace_s=DEFAULT_GRACE_S, schema="main", run_key="run_id", runs_key
 
 
 def open_run(run, eps_by_ego, grace_s=DEFAULT_GRACE_S):
-    """An in-memory database holding one run (its collisions, critical events, step length) and
-    the episodes {ego: [Episode or Warning]} as its warnings table, with the views over them."""
+    """An in-memory database holding one run (its collisions, critical events, step length, the
+    steps' main objects where recorded) and the episodes {ego: [Episode or Warning]} as its
+    warnings table, with the views over them."""
     con = sqlite3.connect(":memory:")
     con.executescript(
         "CREATE TABLE runs(id INTEGER PRIMARY KEY, step_length_s REAL);"
         "CREATE TABLE warnings(run_id INTEGER, ego TEXT, start_s REAL, end_s REAL);"
         "CREATE TABLE collisions(run_id INTEGER, time_s REAL, collider TEXT, victim TEXT);"
         "CREATE TABLE critical_events(run_id INTEGER, time_s REAL, ego TEXT, kind TEXT);"
+        "CREATE TABLE steps(run_id INTEGER, time_s REAL, ego TEXT, main_object TEXT);"
         "CREATE INDEX warnings_by_ego ON warnings(run_id, ego, start_s);"
+        "CREATE INDEX steps_by_ego ON steps(run_id, ego, time_s);"
         "CREATE INDEX critical_events_by_ego ON critical_events(run_id, ego, time_s);")
     con.execute("INSERT INTO runs VALUES(1, ?)", (run.step_length_s,))
     con.executemany("INSERT INTO warnings VALUES(1, ?, ?, ?)",
@@ -73,5 +78,10 @@ def open_run(run, eps_by_ego, grace_s=DEFAULT_GRACE_S):
                     [(c.time_s, c.collider, c.victim) for c in run.collisions])
     con.executemany("INSERT INTO critical_events VALUES(1, ?, ?, ?)",
                     [(e.time_s, e.ego, e.kind) for e in run.critical_events])
-    con.executescript(views_sql(grace_s))
+    attributed = any("main_object" in s for s in run.steps.values())
+    if attributed:  # only the steps that name one: what the view asks of them
+        con.executemany("INSERT INTO steps VALUES(1, ?, ?, ?)",
+                        [(t, ego, m) for ego, s in run.steps.items()
+                         for t, m in zip(s["time_s"], s.get("main_object", [])) if m is not None])
+    con.executescript(views_sql(grace_s, attributed=attributed))
     return con

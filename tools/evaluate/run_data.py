@@ -96,7 +96,8 @@ def _columns(con, table):
     return [r[1] for r in con.execute(f"pragma table_info({table})")]
 
 
-STEP_COLUMNS = ("p_collision", "p_reference", "unavoidability", "speed_mps", "acting")
+STEP_COLUMNS = ("p_collision", "p_reference", "unavoidability", "speed_mps", "acting",
+                "main_object")
 
 
 def _read_tables(con, runs, key):

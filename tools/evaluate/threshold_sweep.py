@@ -73,8 +73,14 @@ def sweep_ours(scenarios, runs, city_run, release_ratio=0.8, thresholds=THRESHOL
             times, p = run.series(s.ego, "p_collision")
             eps = we.episodes(times, p, thr, release_ratio * thr, run.step_length_s,
                               release_after_s)
-            judged.append((s, we.judge(eps, _collision_time(run, s), s.quiet_until_s,
-                                       run.step_length_s, collision_free=not s.collides)))
+            t_c = _collision_time(run, s)
+            hit = run.first_ego_collision(s.ego) if t_c is not None else None
+            credit = None
+            if hit is not None:
+                mt, mains = run.series(s.ego, "main_object")
+                credit = we.partner_credit(mt, mains, hit.partner_of(s.ego), t_c)
+            judged.append((s, we.judge(eps, t_c, s.quiet_until_s, run.step_length_s,
+                                       collision_free=not s.collides, credit=credit)))
         _aggregate(row, judged)
         if city_run is not None and city_run.ok:
             by_ego = {ego: we.episodes(st["time_s"], st["p_collision"], thr, release_ratio * thr,

@@ -10,7 +10,9 @@ evaluation).
 
 Anticipation: collision time minus the start of the episode that is open at the collision (or
 closed at most one step before it), as the driver's collisions.anticipation_s, but only when that
-episode starts after the scenario's quiet phase. One difference: an episode that starts at the
+episode starts after the scenario's quiet phase. Where the steps name each step's main object,
+the episode must have warned of the collision partner and counts from the first step at which
+the partner was its main object (`partner_credit`; the view collision_warnings). One difference: an episode that starts at the
 collision's step counts here (0 s), not in the driver's rule (the view collision_anticipation of
 plugin/record/result_views.sql), which records a step's collisions before its warnings. A false
 positive: an episode that starts at or before the end of the quiet phase, or any episode in a
@@ -61,16 +63,38 @@ def episodes(times, values, threshold, release, step_s, release_after_s=0.0):
     return out
 
 
-def covering(eps, t_collision, step_s):
-    """The episode open at the collision (started at or before it and not closed more than one
-    step before it); None when there is none."""
+def covering(eps, t_collision, step_s, credit=None):
+    """The latest episode open at the collision (started at or before it and not closed more
+    than one step before it) that warned of it (credit(e) not None; every episode without
+    credit); None when there is none."""
     best = None
     for e in eps:
         if e.start_s <= t_collision + 1e-9 and (e.end_s is None or
                                                  e.end_s >= t_collision - step_s - 1e-9):
+            if credit is not None and credit(e) is None:
+                continue
             if best is None or e.start_s > best.start_s:
                 best = e
     return best
+
+
+def partner_credit(times, main_objects, partner, t_collision):
+    """credit(e) for covering and judge: the first step of episode e before the collision at
+    which `partner` was the main object of the estimate (steps.main_object), None when it never
+    was; None (no attribution) when the steps name no main object (an older driver)."""
+    if not times or not main_objects or partner is None:
+        return None
+
+    def credit(e):
+        for t, m in zip(times, main_objects):
+            if t < e.start_s - 1e-9 or t >= t_collision - 1e-9:
+                continue
+            if e.end_s is not None and t > e.end_s + 1e-9:
+                break
+            if m == partner:
+                return t
+        return None
+    return credit
 
 
 @dataclass
@@ -81,10 +105,11 @@ class Judgement:
     false_positive_starts: tuple = ()
 
 
-def judge(eps, t_collision, quiet_until_s, step_s, collision_free):
+def judge(eps, t_collision, quiet_until_s, step_s, collision_free, credit=None):
     """Anticipation of the ego's collision at t_collision (None: it did not collide) and the
     false positive episodes of a scenario designed collision-free (every episode) or not (those
-    starting in the quiet phase)."""
+    starting in the quiet phase). credit (partner_credit): the episode must have warned of the
+    partner, and counts from then."""
     if collision_free:
         fp = list(eps)
     else:
@@ -92,8 +117,12 @@ def judge(eps, t_collision, quiet_until_s, step_s, collision_free):
     j = Judgement(false_positives=len(fp), false_positive_starts=tuple(e.start_s for e in fp))
     if t_collision is None:
         return j
-    e = covering(eps, t_collision, step_s)
-    if e is None:
+    e = covering(eps, t_collision, step_s, credit)
+    if e is None and credit is not None and covering(eps, t_collision, step_s) is not None:
+        other = covering(eps, t_collision, step_s)
+        j.reason = (f"the warning of {other.start_s:.1f} s never named the collision partner as "
+                    f"its main object")
+    elif e is None:
         before = [x for x in eps if quiet_until_s < x.start_s <= t_collision]
         if before:
             last = before[-1]
@@ -104,5 +133,6 @@ def judge(eps, t_collision, quiet_until_s, step_s, collision_free):
     elif e.start_s <= quiet_until_s + 1e-9:
         j.reason = f"warning on since {e.start_s:.1f} s, inside the quiet phase (a false positive)"
     else:
-        j.anticipation_s = round(t_collision - e.start_s, 6)
+        start = credit(e) if credit is not None else e.start_s
+        j.anticipation_s = round(t_collision - start, 6)
     return j

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "plugin/record/result_views.h"
+#include "plugin/act/act_outcome.h"
 #include "plugin/record/results_db.h"
 
 namespace criticality::plugin {
@@ -49,6 +50,15 @@ TEST(ResultViewsDriver, AnticipationIsTheDriversStoredValue) {
           c.victim = c.collider == ego ? egos[k % egos.size()] : ego;
           db.AddCollision(t, c, true);
         }
+      }
+      // Each ego's estimate names one main object: another ego, the stranger x, or none.
+      for (const std::string& ego : egos) {
+        EgoStep s;
+        s.ego = ego;
+        const int pick = static_cast<int>(u(random) * 6);
+        s.main_object = pick < 4 ? egos[pick] : pick == 4 ? "x" : "";
+        if (s.main_object == ego) s.main_object = "x";
+        db.AddStep(t, s);
       }
       for (const std::string& ego : egos) {
         const auto it = open.find(ego);
@@ -97,6 +107,11 @@ TEST(ResultViewsDriver, AnticipationIsTheDriversStoredValue) {
                   "c.victim) AND abs(c.time_s - 0.1 - w.end_s) < 1e-9"),
             0);
   EXPECT_GT(Count(db, "SELECT count(*) FROM warnings WHERE end_s IS NULL"), 0);
+  // Episodes open at a collision that never named its partner: no anticipation from them.
+  EXPECT_GT(Count(db,
+                  "SELECT count(*) FROM collision_warnings WHERE credited_s IS NULL"), 10);
+  EXPECT_GT(Count(db,
+                  "SELECT count(*) FROM collision_warnings WHERE credited_s > start_s"), 10);
   sqlite3_close(db);
   // Attached to another database under another name (criticality-campaign merge does so), the
   // file's views still read its own tables.

@@ -103,8 +103,23 @@ void RunFileTables(Db& db, double step_s = 0.1) {
       "CREATE TABLE warnings(id INTEGER PRIMARY KEY, run_id INTEGER, ego TEXT, start_s REAL, "
       "end_s REAL);"
       "CREATE TABLE collisions(run_id INTEGER, time_s REAL, collider TEXT, victim TEXT);"
-      "CREATE TABLE critical_events(run_id INTEGER, time_s REAL, ego TEXT, kind TEXT);");
+      "CREATE TABLE critical_events(run_id INTEGER, time_s REAL, ego TEXT, kind TEXT);"
+      "CREATE TABLE steps(run_id INTEGER, time_s REAL, ego TEXT, main_object TEXT);");
   db.Insert("runs", {1.0, step_s}, {}, "id, step_length_s");
+}
+
+// The rules that pick the episode, whatever it warned of: episodes credited from their start
+// (as for run files without steps.main_object).
+ResultViewKeys Unattributed() {
+  ResultViewKeys keys = ResultViewKeys::RunFile();
+  keys.attributed = false;
+  return keys;
+}
+
+// The ego's step at t with `object` as the main object of its estimate.
+void MainObject(Db& db, const std::string& ego, double t, const std::string& object,
+                double run = 1.0) {
+  db.Insert("steps", {run, t}, {ego, object}, "run_id, time_s, ego, main_object");
 }
 
 void Warning(Db& db, const std::string& ego, double start, std::optional<double> end,
@@ -229,7 +244,7 @@ TEST(ResultViews, CriticalEventsAreWarnedOfWithinTheSameWindow) {
 TEST(ResultViews, AnticipationCountsAnEpisodeEndedOneStepBeforeTheImpactNotTwo) {
   Db db;
   RunFileTables(db, 0.1);
-  db.Exec(ResultViewsSql(ResultViewKeys::RunFile()));
+  db.Exec(ResultViewsSql(Unattributed()));
   Warning(db, "a", 1.0, 1.5);  // one step before 1.6, two before 1.7
   Collision(db, 1.6, "a", "x");
   Collision(db, 1.7, "a", "x");
@@ -253,11 +268,46 @@ TEST(ResultViews, AnticipationCountsAnEpisodeEndedOneStepBeforeTheImpactNotTwo) 
   EXPECT_EQ(got[6], std::nullopt);
 }
 
+TEST(ResultViews, AnticipationCountsFromTheFirstStepThatNamedThePartner) {
+  Db db;
+  RunFileTables(db, 0.1);
+  db.Exec(ResultViewsSql(ResultViewKeys::RunFile()));
+  // The collider's episode first warned of a pedestrian, then of the car it hit.
+  Warning(db, "a", 1.0, std::nullopt);
+  MainObject(db, "a", 1.0, "ped");
+  MainObject(db, "a", 1.1, "ped");
+  MainObject(db, "a", 1.2, "car");
+  MainObject(db, "a", 1.3, "ped");
+  Collision(db, 1.5, "a", "car");
+  // An episode that only ever warned of someone else anticipates nothing.
+  Warning(db, "b", 2.0, std::nullopt);
+  MainObject(db, "b", 2.0, "ped");
+  MainObject(db, "b", 2.1, "ped");
+  Collision(db, 2.3, "b", "car");
+  // The victim's episode names the collider; the collider's own episode, later, names someone
+  // else: the victim's counts.
+  Warning(db, "v", 3.0, std::nullopt);
+  MainObject(db, "v", 3.0, "c");
+  Warning(db, "c", 3.2, std::nullopt);
+  MainObject(db, "c", 3.2, "other");
+  Collision(db, 3.6, "c", "v");
+  // A step that named the partner at the impact's own stamp (written before that step) or
+  // before the episode does not count.
+  Warning(db, "d", 4.0, std::nullopt);
+  MainObject(db, "d", 3.9, "car");
+  MainObject(db, "d", 4.0, "ped");
+  MainObject(db, "d", 4.4, "car");
+  Collision(db, 4.4, "d", "car");
+  EXPECT_EQ(db.Reals("SELECT anticipation_s FROM collision_anticipation ORDER BY time_s"),
+            (std::vector<std::optional<double>>{1.5 - 1.2, std::nullopt, 3.6 - 3.0,
+                                                std::nullopt}));
+}
+
 TEST(ResultViews, TheOneStepToleranceIsTheRunsStepLength) {
   Db db;
   RunFileTables(db, 0.5);
   db.Insert("runs", {2.0, 0.1}, {}, "id, step_length_s");
-  db.Exec(ResultViewsSql(ResultViewKeys::RunFile()));
+  db.Exec(ResultViewsSql(Unattributed()));
   Warning(db, "a", 1.0, 1.5, 1.0);  // run 1, step 0.5: 0.5 s before the impact counts
   Collision(db, 2.0, "a", "x", 1.0);
   Warning(db, "a", 1.0, 1.5, 2.0);  // run 2, step 0.1: it does not
@@ -281,7 +331,10 @@ TEST(ResultViews, CampaignKeysJudgeEachRunByItsRunIndex) {
       "INSERT INTO warnings VALUES(0, 1, 'ego', 1.0, 1.5), (1, 1, 'ego', 1.0, 1.5);"
       "INSERT INTO collisions VALUES(1, 1, 1.2, 'ego', 'x');"
       "INSERT INTO critical_events VALUES(1, 1, 1.3, 'ego', 'overlap');");
-  db.Exec(ResultViewsSql(ResultViewKeys::Campaign(1.0)));
+  ResultViewKeys keys = ResultViewKeys::Campaign(1.0);
+  keys.attributed = false;  // these runs' steps name no main object: from the episode's start
+  db.Exec("CREATE TABLE steps(run_index INTEGER, run_id INTEGER, time_s REAL, ego TEXT)");
+  db.Exec(ResultViewsSql(keys));
   EXPECT_EQ(db.Texts("SELECT run_index || ':' || COALESCE(outcome, '-') FROM "
                      "temp.warning_outcomes ORDER BY run_index"),
             (std::vector<std::optional<std::string>>{"0:-", "1:collision"}));

@@ -37,6 +37,14 @@ EgoStep Row(double p = 0.0) {
   return r;
 }
 
+// ego's step with `main` as the object with the largest share of p.
+EgoStep Named(const char* ego, const char* main) {
+  EgoStep r = Row(0.6);
+  r.ego = ego;
+  r.main_object = main;
+  return r;
+}
+
 SumoCollision Collision(const char* collider, const char* victim) {
   SumoCollision c;
   c.collider = collider;
@@ -55,6 +63,9 @@ TEST(ResultsDb, AnticipationCountsOnlyAnEpisodeActiveAtTheImpact) {
     db.BeginRun("opts", "SUMO 1.15.0", "a,b,c,d", 0.1);
     db.SetScenario("collision", "x", 2.5, "");
     db.AddStep(1.0, Row(0.2));
+    // Each episode's first step names the object each collision below is with (x, or c's y).
+    for (const char* ego : {"a", "b", "c", "d"}) db.AddStep(ego[0] == 'a' ? 1.5 : 2.0, Named(ego, "x"));
+    db.AddStep(2.0, Named("c", "y"));
     // a: warned from 1.5 s, still warning at its collision at 3.0 s -> 1.5 s.
     db.UpdateWarningPeak(db.OpenWarning("a", 1.5, 0.6, 1.0, 2.0, "WE"), 0.9);
     db.AddCollision(3.0, Collision("a", "x"), true);
@@ -67,6 +78,10 @@ TEST(ResultsDb, AnticipationCountsOnlyAnEpisodeActiveAtTheImpact) {
     // d: an episode starting after the impact does not either.
     db.OpenWarning("d", 3.5, 0.6, 0, 0, "WE");
     db.AddCollision(3.0, Collision("d", "x"), true);
+    // e: an episode open at the impact that only warned of another object does not.
+    db.AddStep(2.0, Named("e", "ped"));
+    db.OpenWarning("e", 2.0, 0.6, 0, 0, "WE");
+    db.AddCollision(3.0, Collision("e", "x"), true);
     db.Commit();
     db.EndRun("completed", "sumo-end", "", "{}");
   }
@@ -75,6 +90,9 @@ TEST(ResultsDb, AnticipationCountsOnlyAnEpisodeActiveAtTheImpact) {
             "1.0");
   EXPECT_EQ(Query(path, "select anticipation_s from collisions where victim='c'"), "NULL");
   EXPECT_EQ(Query(path, "select anticipation_s from collisions where collider='d'"), "NULL");
+  EXPECT_EQ(Query(path, "select anticipation_s from collisions where collider='e'"), "NULL");
+  EXPECT_EQ(Query(path, "select main_object from steps where ego='e'"), "ped");
+  EXPECT_EQ(Query(path, "select count(*) from steps where ego='ego' and main_object is null"), "1");
   EXPECT_EQ(Query(path, "select peak_p || ' ' || x_m || ' ' || edge from warnings where ego='a'"),
             "0.9 1.0 WE");
   EXPECT_EQ(Query(path, "select status || ' ' || end_reason from runs"), "completed sumo-end");
@@ -82,7 +100,8 @@ TEST(ResultsDb, AnticipationCountsOnlyAnEpisodeActiveAtTheImpact) {
   EXPECT_EQ(Query(path, "select expect || ' ' || expect_partner || ' ' || quiet_until_s from runs"),
             "collision x 2.5");
   EXPECT_EQ(Query(path, "select category from runs"), "NULL");
-  EXPECT_EQ(Query(path, "select objects || ' ' || objects_in_reach from steps"), "2 1");
+  EXPECT_EQ(Query(path, "select objects || ' ' || objects_in_reach from steps where ego='ego'"),
+            "2 1");
 }
 
 TEST(ResultsDb, WarningsNameTheirObjectAndCriticalEventsAreKept) {

@@ -99,6 +99,23 @@ class EpisodesTest(unittest.TestCase):
         j = we.judge([we.Episode(2.0, 2.9, 0.6)], 3.0, 1.0, STEP, collision_free=False)
         self.assertAlmostEqual(j.anticipation_s, 1.0)
 
+    def test_judge_counts_from_the_first_step_that_named_the_partner(self):
+        eps = [we.Episode(2.0, None, 0.9)]
+        t = [2.0, 2.1, 2.2, 2.3, 2.4]
+        credit = we.partner_credit(t, ["ped", "ped", "car", "ped", "car"], "car", 2.5)
+        j = we.judge(eps, 2.5, 1.0, STEP, collision_free=False, credit=credit)
+        self.assertAlmostEqual(j.anticipation_s, 0.3)  # 2.5 - 2.2, not 2.5 - 2.0
+        # an episode that only warned of someone else: not the collision's warning
+        credit = we.partner_credit(t, ["ped"] * 5, "car", 2.5)
+        j = we.judge(eps, 2.5, 1.0, STEP, collision_free=False, credit=credit)
+        self.assertIsNone(j.anticipation_s)
+        self.assertIn("never named the collision partner", j.reason)
+        # steps without main objects (an older driver): from the episode's start
+        self.assertIsNone(we.partner_credit(t, [], "car", 2.5))
+        j = we.judge(eps, 2.5, 1.0, STEP, collision_free=False,
+                     credit=we.partner_credit(t, [], "car", 2.5))
+        self.assertAlmostEqual(j.anticipation_s, 0.5)
+
     def test_judge_collision_free_counts_every_episode(self):
         j = we.judge([we.Episode(5.0, 5.5, 0.6), we.Episode(9.0, 9.1, 0.5)], None, 0.0, STEP,
                      collision_free=True)
@@ -239,6 +256,14 @@ class OpenLoopTest(unittest.TestCase):
         self.assertEqual(row.threshold, 0.5)
         self.assertTrue(row.replay_matches_driver)
         self.assertEqual(row.unavoidable_note, "not recorded by this driver")
+
+    def test_anticipation_counts_from_when_the_partner_was_the_main_object(self):
+        p = [0.0] * 10 + [0.2, 0.6, 0.7, 0.9, 1.0, 1.0]
+        run = make_run("s", "ego", p, collision_s=1.5)
+        run.steps["ego"]["main_object"] = [None] * 10 + ["ped", "ped", "ped", "obstacle",
+                                                           "obstacle", "obstacle"]
+        row = open_loop.judge_run(scenario("s"), "ours", run, driver_help.DriverHelp(HELP_05))
+        self.assertAlmostEqual(row.anticipation_s, 0.2)  # 1.5 - 1.3, the partner's first step
 
     def test_replay_mismatch_is_reported(self):
         p = [0.0, 0.6, 0.6, 0.0]
