@@ -33,4 +33,31 @@ std::string NextLaneOnRoute(RoadNetwork& network, const std::string& lane,
   return "";
 }
 
+std::string NextLaneSeen(RoadNetwork& network, const std::string& lane, const std::string& vclass,
+                         Blinker blinker) {
+  const std::vector<LaneLink>& links = network.Links(lane);
+  if (IsInternal(network.Lane(lane).edge)) return links.empty() ? "" : links.front().lane;
+  std::vector<const char*> order;
+  switch (blinker) {
+    case Blinker::kLeft:
+      order = {"l", "L", "t"};
+      break;
+    case Blinker::kRight:
+      order = {"r", "R"};
+      break;
+    case Blinker::kNone:
+      break;
+  }
+  for (const char* d : {"s", "L", "R"}) order.push_back(d);
+  for (const char* d : order) {
+    for (const LaneLink& l : links) {
+      if (l.direction == d && Allows(network, l.lane, vclass)) return l.lane;
+    }
+  }
+  for (const LaneLink& l : links) {
+    if (Allows(network, l.lane, vclass)) return l.lane;
+  }
+  return "";
+}
+
 }  // namespace criticality::plugin

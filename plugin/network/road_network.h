@@ -28,6 +28,9 @@ struct LaneLink {
    *  'u' red-yellow, 's' stop sign, 'w' all-way stop, 'm' minor, '=' equal, ... */
   std::string state;
   bool has_foe{false};  ///< a foe approaches the link now (only meaningful when read now)
+  /** SUMO's direction of the link: 's' straight, 'l' left, 'r' right, 'L' partly left, 'R'
+   *  partly right, 't' turnaround, "" unknown. */
+  std::string direction{"s"};
 };
 
 class RoadNetwork {
@@ -62,5 +65,16 @@ bool PedestriansOnly(RoadNetwork& network, const std::string& lane);
  *  link leads on. */
 std::string NextLaneOnRoute(RoadNetwork& network, const std::string& lane,
                             const std::vector<std::string>& route, int* route_index);
+
+/** SUMO's turn signals (getSignals bits 0 and 1), as a vehicle shows them. */
+enum class Blinker { kNone, kLeft, kRight };
+
+/** The lane a vehicle on `lane` drives onto next, judged only from what can be seen
+ *  (--observable-only, no route): inside a junction the one lane its internal lane leads to;
+ *  at a lane's end, among the links its class may use, the one its blinker points to (a left
+ *  turn, else a partial left; likewise right), else straight on (straight, then partly left or
+ *  right), else the first link. "" when no link leads on. */
+std::string NextLaneSeen(RoadNetwork& network, const std::string& lane, const std::string& vclass,
+                         Blinker blinker);
 
 }  // namespace criticality::plugin

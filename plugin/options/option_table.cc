@@ -129,6 +129,11 @@ void OptionTable::Estimator(DriverOptions* o) {
       "no-road-model", po::bool_switch(&raw.no_road_model),
       "ablation (paper Sec. V-A): ignore SUMO's lanes; every vehicle gets virtual lanes along "
       "its heading")(
+      "observable-only", po::bool_switch(&o->scenes.observable_only),
+      "scenes hold only what the vehicles' sensors could know (positions, speeds, headings, "
+      "sizes, classes, lane geometry, signals, turn signals): each vehicle's way on is its "
+      "blinker's or straight on, not its route; no route ends, no pedestrians' next edges, a "
+      "class's limits instead of its vType's (plugin/README.md, \"Observable-only inputs\")")(
       "no-car-following", po::bool_switch(&raw.no_car_following),
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(

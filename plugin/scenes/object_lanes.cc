@@ -6,6 +6,12 @@
 
 namespace criticality::plugin {
 
+std::string NextLaneOf(const VehicleOnLane& v, const std::string& lane, RoadNetwork* network,
+                       int* route_index) {
+  if (v.observable_only) return NextLaneSeen(*network, lane, v.vehicle_class, v.blinker);
+  return NextLaneOnRoute(*network, lane, v.route, route_index);
+}
+
 void FollowRoute(const VehicleOnLane& v, double reach, RoadNetwork* network, LaneCorridor* c,
                  std::string* beyond_junction, std::optional<double>* route_end) {
   std::string current = v.lane;
@@ -15,9 +21,10 @@ void FollowRoute(const VehicleOnLane& v, double reach, RoadNetwork* network, Lan
   for (int hop = 0; hop < 8 && (length < c->position_m + reach ||
                                 (IsInternal(v.lane) && beyond_junction->empty()));
        ++hop) {
-    const std::string next = NextLaneOnRoute(*network, current, v.route, &route_index);
+    const std::string next = NextLaneOf(v, current, network, &route_index);
     if (next.empty()) {
-      if (current_in_centre && !v.route.empty() && network->Lane(current).edge == v.route.back())
+      if (!v.observable_only && current_in_centre && !v.route.empty() &&
+          network->Lane(current).edge == v.route.back())
         *route_end = std::fmax(0.0, length - v.lane_position_m);
       break;
     }

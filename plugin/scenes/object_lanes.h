@@ -32,7 +32,16 @@ struct VehicleOnLane {
   std::vector<std::string> route;
   int route_index{0};
   std::string vehicle_class;
+  /** --observable-only: its way on is what can be seen (NextLaneSeen: its blinker, else
+   *  straight on), never its route, and where its route ends is not known. */
+  bool observable_only{false};
+  Blinker blinker{Blinker::kNone};
 };
+
+/** The lane the vehicle drives onto after `lane`: along its route (NextLaneOnRoute, advancing
+ *  *route_index), or with observable_only as it is seen to go (NextLaneSeen). */
+std::string NextLaneOf(const VehicleOnLane& v, const std::string& lane, RoadNetwork* network,
+                       int* route_index);
 
 /** See ObjectLanes::smooth_lane_yaw_rate_radps: netconvert's internal lanes turn 20-30 degrees
  *  at each corner, a few metres apart in a junction turn. */
@@ -50,10 +59,11 @@ struct ObjectLanes {
   double smooth_lane_yaw_rate_radps{0.0};
 };
 
-/** Extends the corridor's centre line (starting with the vehicle's lane) along its route, as far
- *  as it can get within `reach` of the corridor's position (at most 8 lanes on, and at least out
- *  of the junction it is in). Sets *beyond_junction to the first normal lane after an internal
- *  one, and *route_end to how far its front still goes when the route ends within the corridor. */
+/** Extends the corridor's centre line (starting with the vehicle's lane) along its way
+ *  (NextLaneOf), as far as it can get within `reach` of the corridor's position (at most 8 lanes
+ *  on, and at least out of the junction it is in). Sets *beyond_junction to the first normal
+ *  lane after an internal one, and *route_end to how far its front still goes when the route
+ *  ends within the corridor (never with observable_only). */
 void FollowRoute(const VehicleOnLane& v, double reach, RoadNetwork* network, LaneCorridor* c,
                  std::string* beyond_junction, std::optional<double>* route_end);
 

@@ -16,6 +16,15 @@ namespace {
 // SUMO's stop state bits (getStopState).
 constexpr int kStopped = 1;
 constexpr int kParking = 2;
+// SUMO's signal bits (getSignals).
+constexpr int kBlinkerRight = 1;
+constexpr int kBlinkerLeft = 2;
+
+Blinker BlinkerOf(int signals) {
+  const bool left = (signals & kBlinkerLeft) != 0, right = (signals & kBlinkerRight) != 0;
+  if (left == right) return Blinker::kNone;  // off, or both (hazard lights)
+  return left ? Blinker::kLeft : Blinker::kRight;
+}
 
 // SUMO's speed, never negative (NaN passed on).
 double Speed(double v) { return std::isnan(v) ? v : std::max(0.0, v); }
@@ -55,14 +64,20 @@ ObjectSnapshot ObjectReader::Person(const SumoObject& o) {
   s.lane = o.lane;
   if (s.lane.empty()) return s;
   s.edge = network_->Lane(s.lane).edge;
+  const WalkingPlace here = WalkingPlaceOf(s.edge, PedestriansOnly(*network_, s.lane));
+  if (config_.observable_only) {
+    // Where it walks can be seen, where it will walk next cannot: on a sidewalk it keeps to it;
+    // at a junction's corner (a walking area) it may be about to cross.
+    s.stays_on_footway = here == WalkingPlace::kSidewalk;
+    return s;
+  }
   // The next edge's lane 0: a sidewalk, walking area or crossing when it has one. A walk that
   // ends on this edge goes on along it.
   const WalkingPlace next = o.next_edge.empty()
                                 ? WalkingPlace::kSidewalk
                                 : WalkingPlaceOf(o.next_edge,
                                                  PedestriansOnly(*network_, o.next_edge + "_0"));
-  s.stays_on_footway =
-      StaysOnFootway(WalkingPlaceOf(s.edge, PedestriansOnly(*network_, s.lane)), next);
+  s.stays_on_footway = StaysOnFootway(here, next);
   return s;
 }
 
@@ -75,6 +90,12 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.not_a_road_user = !road_user;
   const VehicleTypeReport& type = traffic_->TypeOf(o.vehicle_type);
   s.type = TypeFrom(type, road_user.value_or(RoadUser::kCar));
+  // A class can be seen, a vType's limits cannot: the class's own (estimator/ALGORITHM.md).
+  if (config_.observable_only) {
+    VehicleType seen;
+    seen.road_user = s.type.road_user;
+    s.type = seen;
+  }
   s.stopped = (o.stop_state & kStopped) != 0;
   s.parked = (o.stop_state & kParking) != 0;
   // A long body: its first box is the vehicle, the rest carriages behind it (carriages.h).
@@ -103,6 +124,10 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.edge = network_->Lane(s.lane).edge;
   if (s.parked) s.off_road = OffItsLane(o);
   s.leader = LeaderOf(o.id, s.state.speed_mps);  // expected_accel_mps2: ExpectCarFollowing
+  // SUMO's leader is looked for along the route: seen, only the one ahead in its own lane.
+  if (config_.observable_only && s.leader &&
+      s.leader->gap_m > network_->Lane(o.lane).length_m - o.lane_position_m)
+    s.leader.reset();
   if (!Finite(s.state)) return s;
   VehicleOnLane v;
   v.centre = c;
@@ -114,6 +139,8 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   v.route = o.route;
   v.route_index = o.route_index;
   v.vehicle_class = o.vehicle_class;
+  v.observable_only = config_.observable_only;
+  v.blinker = BlinkerOf(o.signals);
   const ObjectLanes lanes = LanesOf(v, config_, step_s_, network_, &counter_lanes_);
   s.lanes = lanes.lanes;
   s.state.route_end_m = lanes.route_end_m;

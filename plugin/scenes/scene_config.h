@@ -24,6 +24,10 @@ struct SceneConfig {
   /** With --all-vehicles: which vClasses are egos (--ego-classes; see road_users.h). */
   EgoClasses ego_classes;
   bool all_vehicles{false};
+  /** --observable-only: scenes hold only what the vehicles' sensors could know (positions,
+   *  speeds, headings, sizes and classes, lane geometry, signal states, turn signals): no
+   *  routes, route ends, next edges or vType values (plugin/README.md). */
+  bool observable_only{false};
 };
 
 /** How far a vehicle can get within the horizon, at least 10 m: v T + a_max T^2 / 2 (its lane

@@ -5,7 +5,9 @@
 // the lane's end): a stop sign or all-way stop ('s', 'w'), or a link that must yield ('m'
 // minor, 'g' green without priority, '=' equal) while SUMO has a foe approaching it (the
 // link's has_foe, read this step). Whether the vehicle will comply is the estimator's question
-// (Params::stop_obligations).
+// (Params::stop_obligations). With VehicleOnLane::observable_only the signal is the one of the
+// link it is seen to take (NextLaneSeen) at its lane's end, as SUMO's link state shows it (no
+// getNextTLS along the route).
 #include <optional>
 
 #include "criticality/scene.h"

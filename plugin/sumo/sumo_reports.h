@@ -35,6 +35,9 @@ struct SumoObject {
    *  containers, 16 at a bus stop, 32 at a container stop, 64 at a charging station, 128 in a
    *  parking area. */
   int stop_state{0};
+  /** SUMO's signal bits (getSignals): 1 right blinker, 2 left blinker, 4 emergency blinker,
+   *  8 brake light, ... */
+  int signals{0};
   // ---- persons ----
   /** Its next edge (crossings and walking areas included); "" when its walk ends here. */
   std::string next_edge;

@@ -44,8 +44,8 @@ class FakeSumoWorld final : public SumoWorld {
     edges_.push_back(edge);
   }
   void AddLink(const std::string& from_lane, const std::string& to_lane, std::string state = "M",
-               bool has_foe = false) {
-    links_[from_lane].push_back(LaneLink{to_lane, "", state, has_foe});
+               bool has_foe = false, std::string direction = "s") {
+    links_[from_lane].push_back(LaneLink{to_lane, "", state, has_foe, direction});
   }
   void SetAllowed(const std::string& lane, std::vector<std::string> classes) {
     allowed_[lane] = std::move(classes);

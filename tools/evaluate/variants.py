@@ -33,6 +33,8 @@ VARIANTS = [
     Variant("no-car-following",
             "ours without the car-following reference (the paper's: keep the current acceleration)",
             {"act": "warn", "no-car-following": "true"}),
+    Variant("observable", "ours with only what sensors could know (--observable-only: no routes)",
+            {"act": "warn", "observable-only": "true"}),
     Variant("paper-literal", "the first implementation's scoring (ParamsPreset paper-literal)",
             {"act": "warn", "preset": "paper-literal"}),
 ]

@@ -136,6 +136,8 @@ TEST(DriverOptions, PresetAblationsAndWarningEstimate) {
   EXPECT_FALSE(a.params.road_model);
   EXPECT_TRUE(a.params.expected_accel_reference);
   EXPECT_FALSE(with({"--no-car-following"}).params.expected_accel_reference);
+  EXPECT_FALSE(d.scenes.observable_only);
+  EXPECT_TRUE(with({"--observable-only"}).scenes.observable_only);
   // A shorter horizon scales the path sample instants (1.0, 1.5, 2.0 of 2 s).
   const DriverOptions h = with({"--horizon", "1.5"});
   EXPECT_EQ(h.params.horizon_s, 1.5);
