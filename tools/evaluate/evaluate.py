@@ -24,6 +24,8 @@ import campaign_runs  # noqa: E402
 import city_false_alarms  # noqa: E402
 import closed_loop  # noqa: E402
 import driver_help  # noqa: E402
+import family_eval  # noqa: E402
+import network_family  # noqa: E402
 import open_loop  # noqa: E402
 import run_data  # noqa: E402
 import scenario_meta  # noqa: E402
@@ -72,6 +74,13 @@ def parse_args(argv):
     ap.add_argument("--resume", action="store_true",
                     help="keep complete runs of an earlier evaluation in OUT/runs (default: run "
                     "everything afresh, so that every figure comes from the driver as it is now)")
+    ap.add_argument("--family", choices=sorted(network_family.PROFILES),
+                    help="instead of the designed scenarios: the held-out protocol's generated "
+                    "networks (tools/evaluate/network_family.py; quick: seeds 1 and 3, 12 runs "
+                    "per variant; full: seeds 1-4), every vehicle an ego, tuning and held-out "
+                    "sets side by side; default variants: ours and observable")
+    ap.add_argument("--family-time-limit", type=int, default=3600,
+                    help="seconds one family run may take before it is stopped (default 3600)")
     ap.add_argument("--report-only", action="store_true",
                     help="no runs: tables and figures from OUT/runs as they are")
     return ap.parse_args(argv)
@@ -86,6 +95,46 @@ def git_describe():
         return rev + ("+changes" if dirty else "")
     except OSError:
         return "unknown"
+
+
+def run_family(a, chosen, info):
+    """The held-out protocol (--family): generate the networks, run each open-loop variant
+    over them with every vehicle an ego, write family.* into OUT."""
+    out = os.path.abspath(a.out)
+    nets = network_family.family(a.family)
+    try:
+        cfgs = [network_family.generate(n, os.path.join(out, "family_nets"), log) for n in nets]
+    except (RuntimeError, OSError) as e:
+        log(f"evaluate: {e}")
+        return 2
+    open_variants = [v for v in chosen if v.loop == "open"]
+    runs_dir = os.path.join(out, "runs")
+    if not a.report_only:
+        runner = campaign_runs.CampaignRunner(a.campaign_tool, a.driver, runs_dir, a.jobs, log)
+        try:
+            for v in open_variants:
+                t0 = time.time()
+                driver = dict(v.options, **{"all-vehicles": "true", "threads": 1})
+                runner.run("family-" + v.name, cfgs, driver, {}, a.family_time_limit, a.resume)
+                info["wall_s"]["family-" + v.name] = round(time.time() - t0, 1)
+        except (RuntimeError, OSError) as e:
+            log(f"evaluate: {e}")
+            return 1
+    rows = []
+    for v in open_variants:
+        by = family_eval.read_runs(os.path.join(runs_dir, "family-" + v.name))
+        rows += [family_eval.judge(v.name, n, by.get(n.name)) for n in nets]
+    lines = [f"- {info['date']}, commit {info['commit']}, `{info['command']}`",
+             f"- profile {a.family}: {len(nets)} networks "
+             f"({sum(n.split == 'tuning' for n in nets)} tuning, "
+             f"{sum(n.split == 'held-out' for n in nets)} held-out); variants "
+             f"{', '.join(v.name for v in open_variants)}"]
+    family_eval.write(out, rows, lines)
+    info["networks"] = [{"name": n.name, "split": n.split} for n in nets]
+    with open(os.path.join(out, "run_info.json"), "w", encoding="utf-8") as f:
+        json.dump(info, f, indent=1)
+    log(f"evaluate: {out}/family.html")
+    return 0
 
 
 def main(argv):
@@ -112,6 +161,8 @@ def main(argv):
             return 2
         designed = [s for s in designed if s.name in wanted]
     chosen = variant_table.VARIANTS
+    if a.family and not a.variants:
+        chosen = [variant_table.by_name("ours"), variant_table.by_name("observable")]
     if a.variants:
         names = [w.strip() for w in a.variants.split(",") if w.strip()]
         try:
@@ -147,6 +198,8 @@ def main(argv):
     except OSError:
         info["driver_version"] = ""
 
+    if a.family:
+        return run_family(a, available, info)
     if not a.report_only:
         runner = campaign_runs.CampaignRunner(a.campaign_tool, a.driver, runs_dir, a.jobs, log)
         egos = ",".join(sorted({s.ego for s in designed}))

@@ -16,6 +16,8 @@ import campaign_runs  # noqa: E402
 import city_false_alarms  # noqa: E402
 import closed_loop  # noqa: E402
 import driver_help  # noqa: E402
+import family_eval  # noqa: E402
+import network_family  # noqa: E402
 import open_loop  # noqa: E402
 import run_data  # noqa: E402
 import scenario_meta  # noqa: E402
@@ -416,6 +418,77 @@ class TargetsTest(unittest.TestCase):
         ssm_row = earlier["earlier than SSM's TTC at fewer false alarms"]
         self.assertTrue(ssm_row.met)
         self.assertNotIn("why", ssm_row.gap)
+
+
+class NetworkFamilyTest(unittest.TestCase):
+    def test_the_split_is_disjoint_by_seed_and_covers_every_kind_and_step_in_both_sets(self):
+        nets = network_family.family("full")
+        self.assertEqual(len(nets), len(set(n.name for n in nets)))
+        tuning = [n for n in nets if n.split == "tuning"]
+        held = [n for n in nets if n.split == "held-out"]
+        self.assertEqual(len(tuning) + len(held), len(nets))
+        self.assertFalse({n.seed for n in tuning} & {n.seed for n in held})
+        for group in (tuning, held):
+            self.assertEqual({(n.kind, n.step_s) for n in group},
+                             {(k, dt) for k in network_family.KINDS
+                              for dt in network_family.STEPS_S})
+        quick = network_family.family("quick")
+        self.assertTrue(set(quick) < set(nets))
+        self.assertEqual({n.split for n in quick}, {"tuning", "held-out"})
+        with self.assertRaises(ValueError):
+            network_family.family("huge")
+
+    def test_the_seed_draws_the_network_and_the_traffic(self):
+        self.assertNotEqual(network_family.netgenerate_args("grid", 1),
+                            network_family.netgenerate_args("grid", 3))
+        self.assertIn("3", network_family.netgenerate_args("rand", 3))
+        for args in network_family.traffic_args(3, 300).values():
+            self.assertEqual(args[:2], ["-s", "3"])
+        net = network_family.Network("spider", 3, 0.1)
+        cfg = network_family.sumocfg_text(net, ["cars.rou.xml", "peds.rou.xml"])
+        self.assertIn('<step-length value="0.1"/>', cfg)
+        self.assertIn('<end value="120"/>', cfg)
+        self.assertIn("spider3.net.xml", cfg)
+        self.assertIn("held-out", cfg)
+
+
+class FamilyEvalTest(unittest.TestCase):
+    def test_a_rewarning_opens_within_the_gap_after_the_same_egos_last_episode(self):
+        w = run_data.Warning
+        eps = [w("a", 1.0, 2.0, 0.9), w("a", 3.5, 4.0, 0.9),  # 1.5 s later: a re-warning
+               w("a", 7.0, 8.0, 0.9),                          # 3 s later: a new approach
+               w("b", 4.5, 5.0, 0.9)]                          # another ego's
+        self.assertEqual(family_eval.rewarnings(eps), 1)
+        self.assertEqual(family_eval.rewarnings(eps, gap_s=3.0), 2)
+
+    def test_network_rows_and_set_sums(self):
+        run = make_run("grid1_1s", "a", [0.0] * 36000)  # one vehicle-hour
+        run.warnings = [run_data.Warning("a", 10.0, 10.5, 0.9),  # ends 2.5 s before the collision
+                        run_data.Warning("a", 12.0, 13.0, 0.9),  # a re-warning, open at the collision
+                        run_data.Warning("a", 500.0, 501.0, 0.9)]
+        run.collisions = [run_data.Collision(13.0, "a", "b", 5.0, 0.0, True),
+                          run_data.Collision(900.0, "c", "d", 5.0, 0.0, False)]
+        tuning = network_family.Network("grid", 1, 1.0)
+        row = family_eval.judge("ours", tuning, run)
+        self.assertEqual((row.warnings, row.false_alarms, row.rewarnings), (3, 2, 1))
+        self.assertEqual((row.collisions, row.warned_collisions), (2, 1))
+        self.assertAlmostEqual(row.median_anticipation_s, 1.0)  # from the episode at 12.0 s
+        self.assertAlmostEqual(row.false_alarms_per_vehicle_hour, 2.0)
+        held = network_family.Network("grid", 3, 1.0)
+        failed = make_run("grid3_1s", "a", [0.0] * 10, status="failed")
+        rows = [row, family_eval.judge("ours", held, failed),
+                family_eval.judge("ours", network_family.Network("rand", 3, 1.0), None)]
+        by = {s.split: s for s in family_eval.sets(rows)}
+        self.assertEqual(by["tuning"].status, "ok")
+        self.assertEqual(by["tuning"].false_alarms, 2)
+        self.assertEqual(by["held-out"].status, "incomplete")
+        self.assertEqual(by["held-out"].network, "0 of 2 networks")
+        self.assertIsNone(by["held-out"].false_alarms_per_vehicle_hour)
+        with tempfile.TemporaryDirectory() as d:
+            family_eval.write(d, rows, ["- test"])
+            text = open(os.path.join(d, "family.md"), encoding="utf-8").read()
+            self.assertIn("| ours | tuning | 1 of 1 networks |", text)
+            self.assertTrue(os.path.exists(os.path.join(d, "family.html")))
 
 
 if __name__ == "__main__":

@@ -1,0 +1,200 @@
+"""The evaluation on the held-out protocol's network family (network_family.py): every open-loop
+variant chosen runs every network of the profile with every vehicle an ego (`--all-vehicles
+--act warn`), through criticality-campaign; then, per network and per set (tuning, held-out):
+vehicle-hours of estimation, warnings and false alarms per vehicle-hour (the views of
+plugin/record/result_views.sql, as for the city-like run: city_false_alarms.py), SUMO's
+collisions and how many of them a warning anticipated (and by how long: the view
+collision_anticipation), and re-warnings (flicker).
+
+A re-warning is an episode of an ego that opens within REWARN_GAP_S of the end of the same
+ego's previous episode: one approach warned, released and warned again, as in the issue's
+"0.81, 0.93, 0.0, 0.72, ..." (the driver's hysteresis already joins dips shorter than
+--warn-release-after).
+
+Writes OUT/family.csv (one row per network and variant), OUT/family_sets.csv (one row per set
+and variant), OUT/family.md and OUT/family.html."""
+
+import html
+import os
+import statistics
+from dataclasses import dataclass
+
+import city_false_alarms
+import result_views
+import run_data
+import tables
+import warning_episodes as we
+
+REWARN_GAP_S = 2.0
+
+
+@dataclass
+class FamilyRow:
+    variant: str = ""
+    network: str = ""
+    split: str = ""
+    kind: str = ""
+    step_s: float = None
+    status: str = ""
+    vehicle_hours: float = 0.0
+    egos: int = 0
+    warnings: int = 0
+    false_alarms: int = 0
+    rewarnings: int = 0
+    collisions: int = 0
+    warned_collisions: int = 0
+    anticipation_s: list = None  # of the warned collisions
+
+    @property
+    def warnings_per_vehicle_hour(self):
+        return self.warnings / self.vehicle_hours if self.vehicle_hours > 0 else None
+
+    @property
+    def false_alarms_per_vehicle_hour(self):
+        return self.false_alarms / self.vehicle_hours if self.vehicle_hours > 0 else None
+
+    @property
+    def rewarnings_per_vehicle_hour(self):
+        return self.rewarnings / self.vehicle_hours if self.vehicle_hours > 0 else None
+
+    @property
+    def median_anticipation_s(self):
+        return statistics.median(self.anticipation_s) if self.anticipation_s else None
+
+    def as_dict(self):
+        d = {k: getattr(self, k) for k in ("variant", "network", "split", "kind", "step_s",
+                                           "status", "vehicle_hours", "egos", "warnings",
+                                           "false_alarms", "rewarnings", "collisions",
+                                           "warned_collisions")}
+        d.update(warnings_per_vehicle_hour=self.warnings_per_vehicle_hour,
+                 false_alarms_per_vehicle_hour=self.false_alarms_per_vehicle_hour,
+                 rewarnings_per_vehicle_hour=self.rewarnings_per_vehicle_hour,
+                 median_anticipation_s=self.median_anticipation_s)
+        return d
+
+
+def rewarnings(warnings, gap_s=REWARN_GAP_S):
+    """Episodes (run_data.Warning) that open within gap_s after the end of their ego's previous
+    episode."""
+    n = 0
+    last_end = {}
+    for w in sorted(warnings, key=lambda w: (w.ego, w.start_s)):
+        end = last_end.get(w.ego)
+        if end is not None and w.start_s - end <= gap_s + 1e-9:
+            n += 1
+        last_end[w.ego] = w.end_s if w.end_s is not None else w.start_s
+    return n
+
+
+def collision_anticipation(run):
+    """[anticipation_s or None] for each of SUMO's collisions in the run (the view
+    collision_anticipation over the driver's warnings)."""
+    eps = {}
+    for w in run.warnings:
+        eps.setdefault(w.ego, []).append(we.Episode(w.start_s, w.end_s, w.peak_p))
+    con = result_views.open_run(run, eps)
+    try:
+        return [r[0] for r in con.execute(
+            "SELECT anticipation_s FROM collision_anticipation ORDER BY time_s")]
+    finally:
+        con.close()
+
+
+def judge(variant, net, run):
+    row = FamilyRow(variant=variant, network=net.name, split=net.split, kind=net.kind,
+                    step_s=net.step_s)
+    if run is None:
+        row.status = "not run"
+        return row
+    row.status = run.status
+    if not run.ok:
+        return row
+    row.vehicle_hours = city_false_alarms.vehicle_hours(run)
+    row.egos = len(run.steps)
+    row.warnings = len(run.warnings)
+    eps = {}
+    for w in run.warnings:
+        eps.setdefault(w.ego, []).append(we.Episode(w.start_s, w.end_s, w.peak_p))
+    row.false_alarms = city_false_alarms.false_alarms(run, eps) if eps else 0
+    row.rewarnings = rewarnings(run.warnings)
+    ant = collision_anticipation(run)
+    row.collisions = len(ant)
+    row.anticipation_s = [a for a in ant if a is not None]
+    row.warned_collisions = len(row.anticipation_s)
+    return row
+
+
+def sets(rows):
+    """One row per (variant, split): the sums over its networks that ran, and the rates of the
+    sums (a set's rate weighs its networks by their vehicle-hours)."""
+    out = []
+    keys = sorted({(r.variant, r.split) for r in rows}, key=lambda k: (k[0], k[1] != "tuning"))
+    for variant, split in keys:
+        mine = [r for r in rows if r.variant == variant and r.split == split]
+        ok = [r for r in mine if r.status == "ok"]
+        s = FamilyRow(variant=variant, network=f"{len(ok)} of {len(mine)} networks", split=split,
+                      status="ok" if len(ok) == len(mine) else "incomplete")
+        for r in ok:
+            s.vehicle_hours += r.vehicle_hours
+            s.egos += r.egos
+            s.warnings += r.warnings
+            s.false_alarms += r.false_alarms
+            s.rewarnings += r.rewarnings
+            s.collisions += r.collisions
+            s.warned_collisions += r.warned_collisions
+        s.anticipation_s = [a for r in ok for a in (r.anticipation_s or [])]
+        out.append(s)
+    return out
+
+
+COLUMNS = ["variant", "split", "network", "step_s", "status", "vehicle_hours", "egos",
+           "warnings", "warnings_per_vehicle_hour", "false_alarms",
+           "false_alarms_per_vehicle_hour", "rewarnings", "rewarnings_per_vehicle_hour",
+           "collisions", "warned_collisions", "median_anticipation_s"]
+HEADERS = ["variant", "set", "network", "step (s)", "status", "vehicle-hours", "egos",
+           "warnings", "warnings / veh-h", "false alarms", "false alarms / veh-h", "re-warnings",
+           "re-warnings / veh-h", "collisions", "warned collisions", "median anticipation (s)"]
+SET_COLUMNS = [c for c in COLUMNS if c != "step_s"]
+SET_HEADERS = [h for c, h in zip(COLUMNS, HEADERS) if c != "step_s"]
+
+
+def write(out, rows, info_lines):
+    """family.csv, family_sets.csv, family.md, family.html; returns the set rows."""
+    per = [r.as_dict() for r in rows]
+    summary = [r.as_dict() for r in sets(rows)]
+    tables.write_csv(os.path.join(out, "family.csv"), per, COLUMNS)
+    tables.write_csv(os.path.join(out, "family_sets.csv"), summary, SET_COLUMNS)
+    intro = ["# Held-out networks (tools/evaluate/network_family.py)", ""] + info_lines + [
+        "", "Every vehicle an ego, `--act warn`. A false alarm: a warning episode that no "
+        "collision, body overlap or hard braking of its ego followed within 2 s of its end. "
+        f"A re-warning: an episode opening within {REWARN_GAP_S:g} s of the end of its ego's "
+        "previous one. A rule is kept only if it helps the held-out set.", ""]
+    md = intro + ["## By set", "", tables.markdown(summary, SET_COLUMNS, SET_HEADERS), "",
+                  "## By network", "", tables.markdown(per, COLUMNS, HEADERS), ""]
+    with open(os.path.join(out, "family.md"), "w", encoding="utf-8") as f:
+        f.write("\n".join(md))
+
+    def table(rows_, cols, heads):
+        th = "".join(f"<th>{html.escape(h)}</th>" for h in heads)
+        trs = "".join("<tr>" + "".join(f"<td>{html.escape(tables.cell(r.get(c)) or '-')}</td>"
+                                       for c in cols) + "</tr>" for r in rows_)
+        return f"<table><tr>{th}</tr>{trs}</table>"
+
+    page = ["<!doctype html><html><head><meta charset='utf-8'><title>Held-out networks</title>",
+            "<style>body{font-family:sans-serif;max-width:1300px;margin:auto}"
+            "table{border-collapse:collapse;font-size:14px}td,th{border:1px solid #ccc;"
+            "padding:3px 6px;text-align:right}th{background:#eee}</style></head><body>",
+            "<h1>Held-out networks</h1>"] + [f"<p>{html.escape(x)}</p>" for x in intro[2:] if x]
+    page += ["<h2>By set</h2>", table(summary, SET_COLUMNS, SET_HEADERS),
+             "<h2>By network</h2>", table(per, COLUMNS, HEADERS),
+             "<p>family.csv, family_sets.csv: the same tables.</p></body></html>"]
+    with open(os.path.join(out, "family.html"), "w", encoding="utf-8") as f:
+        f.write("\n".join(page))
+    return summary
+
+
+def read_runs(folder):
+    """{scenario name: Run} of one variant's merged campaign; {} when it has none."""
+    if not os.path.exists(os.path.join(folder, "campaign.sqlite")):
+        return {}
+    return run_data.read_campaign(folder)[0]

@@ -1,0 +1,185 @@
+"""The held-out protocol (issue 22): a family of generated SUMO networks, split into a tuning set
+and a held-out set before any rule is tuned on them.
+
+The split (written down on 2026-12-02, before any figure of the family was looked at; change it
+only by adding networks, never by moving one from a set to the other):
+- three network kinds, netgenerate's grid, spider and rand, each with seeds 1 to 4 and both step
+  lengths, 1 s (SUMO's default) and 0.1 s;
+- seeds 1 and 2 are the tuning set, seeds 3 and 4 the held-out set. The seed draws the network
+  (rand), its size and junction control (grid, spider) and the traffic (randomTrips: cars,
+  trucks, bicycles, pedestrians), so the held-out networks are other networks, not other traffic
+  on the same ones.
+A rule (a new mechanism, a changed parameter) is kept only if it helps the held-out set; both
+sets are reported (tools/evaluate/README.md, "Held-out networks"). The `quick` profile takes one
+seed of each set (1 and 3), `full` all four.
+
+Generation is deterministic: netgenerate and randomTrips with fixed seeds; a network folder is
+rebuilt when the commands that made it change (FAMILY_COMMANDS.txt in it)."""
+
+import os
+import shutil
+import subprocess
+import sys
+from dataclasses import dataclass
+
+KINDS = ("grid", "spider", "rand")
+SEEDS = (1, 2, 3, 4)
+TUNING_SEEDS = (1, 2)
+STEPS_S = (1.0, 0.1)
+PROFILES = {"quick": (1, 3), "full": SEEDS}
+# Simulated seconds per step length: the 0.1 s runs cost ten steps per second.
+END_S = {1.0: 300.0, 0.1: 120.0}
+# randomTrips periods (s between departures; a lower one is more traffic), per kind of road user.
+PERIODS_S = {"car": 2.0, "truck": 15.0, "bike": 10.0, "ped": 6.0}
+
+
+@dataclass(frozen=True)
+class Network:
+    kind: str  # grid | spider | rand
+    seed: int
+    step_s: float
+
+    @property
+    def split(self):
+        return "tuning" if self.seed in TUNING_SEEDS else "held-out"
+
+    @property
+    def name(self):
+        return f"{self.kind}{self.seed}_{'1s' if self.step_s == 1.0 else '0.1s'}"
+
+    @property
+    def net_name(self):
+        """The network's own name (both step lengths share the network and its traffic)."""
+        return f"{self.kind}{self.seed}"
+
+    @property
+    def end_s(self):
+        return END_S[self.step_s]
+
+
+def family(profile="full"):
+    if profile not in PROFILES:
+        raise ValueError(f"network family: no profile {profile!r} (known: "
+                         f"{', '.join(PROFILES)})")
+    return [Network(k, s, dt) for k in KINDS for s in PROFILES[profile] for dt in STEPS_S]
+
+
+def netgenerate_args(kind, seed):
+    """netgenerate's options for one network (without the output): the seed draws its size and
+    junction control; every network has sidewalks and crossings for the pedestrians."""
+    common = ["--sidewalks.guess", "--crossings.guess", "--seed", str(seed),
+              "--no-turnarounds.except-deadend"]
+    if kind == "grid":
+        lanes = 1 + seed % 2
+        control = ["--tls.guess"] if seed % 2 else ["--default-junction-type",
+                                                    "right_before_left"]
+        return ["--grid", "--grid.number", str(3 + seed % 2), "--grid.length",
+                str(100 + 20 * seed), "--default.lanenumber", str(lanes)] + control + common
+    if kind == "spider":
+        return ["--spider", "--spider.arm-number", str(4 + seed % 3), "--spider.circle-number",
+                "3", "--spider.space-radius", str(80 + 10 * seed), "--tls.guess"] + common
+    if kind == "rand":
+        return ["--rand", "--rand.iterations", "60", "--rand.max-distance", "200",
+                "--default.lanenumber", str(1 + seed % 2), "--tls.guess"] + common
+    raise ValueError(f"network family: no network kind {kind!r} (known: {', '.join(KINDS)})")
+
+
+def traffic_args(seed, end_s):
+    """{file stem: randomTrips options} for the traffic of one network: cars and trucks from
+    the fringe, bicycles, pedestrians; routes checked by duarouter (--validate)."""
+    common = ["-s", str(seed), "-b", "0", "-e", f"{end_s:g}"]
+    return {
+        "cars": common + ["-p", f"{PERIODS_S['car']:g}", "--prefix", "car", "--fringe-factor",
+                          "5", "--validate"],
+        "trucks": common + ["-p", f"{PERIODS_S['truck']:g}", "--prefix", "truck",
+                            "--vehicle-class", "truck", "--vclass", "truck", "--fringe-factor",
+                            "5", "--validate"],
+        "bikes": common + ["-p", f"{PERIODS_S['bike']:g}", "--prefix", "bike",
+                           "--vehicle-class", "bicycle", "--vclass", "bicycle", "--validate"],
+        "peds": common + ["-p", f"{PERIODS_S['ped']:g}", "--prefix", "ped", "--pedestrians"],
+    }
+
+
+def sumocfg_text(net, route_files):
+    """A plain SUMO configuration: the network, the routes, the step length and end; collisions
+    checked in junctions too (SUMO's default checks lanes only), everything else SUMO's
+    defaults."""
+    routes = ",".join(route_files)
+    return f"""<?xml version="1.0" encoding="UTF-8"?>
+<!-- Written by tools/evaluate/network_family.py ({net.name}, {net.split} set). -->
+<configuration>
+    <input>
+        <net-file value="{net.net_name}.net.xml"/>
+        <route-files value="{routes}"/>
+    </input>
+    <time>
+        <begin value="0"/>
+        <end value="{net.end_s:g}"/>
+        <step-length value="{net.step_s:g}"/>
+    </time>
+    <processing>
+        <collision.check-junctions value="true"/>
+    </processing>
+    <report>
+        <no-step-log value="true"/>
+    </report>
+</configuration>
+"""
+
+
+def _sumo_home():
+    home = os.environ.get("SUMO_HOME") or "/usr/share/sumo"
+    if not os.path.exists(os.path.join(home, "tools", "randomTrips.py")):
+        raise RuntimeError(f"network family: no randomTrips.py in {home}/tools: install "
+                           "Debian's sumo-tools (tools/setup.sh does) or set SUMO_HOME")
+    return home
+
+
+def commands(net, folder):
+    """The commands that make one network's folder, in order (argument lists)."""
+    home = _sumo_home()
+    net_file = os.path.join(folder, f"{net.net_name}.net.xml")
+    out = [["netgenerate"] + netgenerate_args(net.kind, net.seed) + ["-o", net_file]]
+    for stem, args in traffic_args(net.seed, END_S[max(STEPS_S)]).items():
+        routes = os.path.join(folder, f"{stem}.rou.xml")
+        trips = os.path.join(folder, f"{stem}.trips.xml")
+        cmd = [sys.executable, os.path.join(home, "tools", "randomTrips.py"), "-n", net_file]
+        if stem == "peds":
+            cmd += ["-o", routes]
+        else:
+            cmd += ["-o", trips, "-r", routes]
+        out.append(cmd + args)
+    return out
+
+
+def generate(net, root, log=None):
+    """Makes (or reuses) the folder of one network of the family under root and returns the
+    path of its .sumocfg. The network and its traffic live in root/<kind><seed>/, shared by both
+    step lengths; a folder whose recorded commands differ is made afresh."""
+    folder = os.path.join(root, net.net_name)
+    cmds = commands(net, folder)
+    record = "\n".join(" ".join(c[1:] if c[0] == sys.executable else c) for c in cmds) + "\n"
+    stamp = os.path.join(folder, "FAMILY_COMMANDS.txt")
+    have = open(stamp, encoding="utf-8").read() if os.path.exists(stamp) else None
+    if have != record:
+        if os.path.exists(folder):
+            shutil.rmtree(folder)
+        os.makedirs(folder)
+        if log:
+            log(f"evaluate: generating network {net.net_name} ({net.split} set)")
+        env = dict(os.environ, SUMO_HOME=_sumo_home())
+        for c in cmds:
+            p = subprocess.run(c, cwd=folder, env=env, stdout=subprocess.PIPE,
+                               stderr=subprocess.STDOUT, text=True)
+            if p.returncode != 0:
+                tail = (p.stdout.strip().splitlines() or [""])[-1]
+                raise RuntimeError(f"network family: {' '.join(c[:2])} for {net.net_name} "
+                                   f"exited {p.returncode}: {tail}")
+        with open(stamp, "w", encoding="utf-8") as f:  # last: a complete folder
+            f.write(record)
+    cfg = os.path.join(folder, f"{net.name}.sumocfg")
+    text = sumocfg_text(net, [f"{s}.rou.xml" for s in traffic_args(net.seed, net.end_s)])
+    if not os.path.exists(cfg) or open(cfg, encoding="utf-8").read() != text:
+        with open(cfg, "w", encoding="utf-8") as f:
+            f.write(text)
+    return cfg
