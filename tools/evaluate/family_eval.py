@@ -4,7 +4,7 @@ variant chosen runs every network of the profile with every vehicle an ego (`--a
 vehicle-hours of estimation, warnings and false alarms per vehicle-hour (the views of
 plugin/record/result_views.sql, as for the city-like run: city_false_alarms.py), SUMO's
 collisions and how many of them a warning anticipated (and by how long: the view
-collision_anticipation), and re-warnings (flicker).
+collision_anticipation), re-warnings and the turns of p within an approach (flicker).
 
 A re-warning is an episode of an ego that opens within REWARN_GAP_S of the end of the same
 ego's previous episode: one approach warned, released and warned again, as in the issue's
@@ -26,6 +26,11 @@ import tables
 import warning_episodes as we
 
 REWARN_GAP_S = 2.0
+# Flicker within an approach: sign changes of dp over an episode and the APPROACH_S before it,
+# counting only steps that change p by at least FLICKER_MIN_DP (so that numerical noise on a
+# flat p is no flicker).
+APPROACH_S = 2.0
+FLICKER_MIN_DP = 0.05
 
 
 @dataclass
@@ -41,6 +46,7 @@ class FamilyRow:
     warnings: int = 0
     false_alarms: int = 0
     rewarnings: int = 0
+    dp_sign_changes: int = 0  # summed over the episodes (episode_flicker)
     collisions: int = 0
     warned_collisions: int = 0
     anticipation_s: list = None  # of the warned collisions
@@ -58,6 +64,10 @@ class FamilyRow:
         return self.rewarnings / self.vehicle_hours if self.vehicle_hours > 0 else None
 
     @property
+    def dp_sign_changes_per_warning(self):
+        return self.dp_sign_changes / self.warnings if self.warnings else None
+
+    @property
     def median_anticipation_s(self):
         return statistics.median(self.anticipation_s) if self.anticipation_s else None
 
@@ -69,6 +79,7 @@ class FamilyRow:
         d.update(warnings_per_vehicle_hour=self.warnings_per_vehicle_hour,
                  false_alarms_per_vehicle_hour=self.false_alarms_per_vehicle_hour,
                  rewarnings_per_vehicle_hour=self.rewarnings_per_vehicle_hour,
+                 dp_sign_changes_per_warning=self.dp_sign_changes_per_warning,
                  median_anticipation_s=self.median_anticipation_s)
         return d
 
@@ -84,6 +95,34 @@ def rewarnings(warnings, gap_s=REWARN_GAP_S):
             n += 1
         last_end[w.ego] = w.end_s if w.end_s is not None else w.start_s
     return n
+
+
+def dp_sign_changes(values, min_dp=FLICKER_MIN_DP):
+    """Sign changes of the successive differences of values, over the differences of at least
+    min_dp (smaller ones are skipped, not counted as a change)."""
+    n, last = 0, 0
+    for a, b in zip(values, values[1:]):
+        d = b - a
+        if abs(d) < min_dp:
+            continue
+        sign = 1 if d > 0 else -1
+        if last and sign != last:
+            n += 1
+        last = sign
+    return n
+
+
+def episode_flicker(run):
+    """[sign changes of dp] for each warning episode of the run: its ego's p_collision from
+    APPROACH_S before the episode's start to its end."""
+    out = []
+    for w in run.warnings:
+        t, p = run.series(w.ego, "p_collision")
+        end = w.end_s if w.end_s is not None else w.start_s
+        vals = [v for ti, v in zip(t, p)
+                if w.start_s - APPROACH_S - 1e-9 <= ti <= end + 1e-9 and v is not None]
+        out.append(dp_sign_changes(vals))
+    return out
 
 
 def collision_anticipation(run):
@@ -117,6 +156,7 @@ def judge(variant, net, run):
         eps.setdefault(w.ego, []).append(we.Episode(w.start_s, w.end_s, w.peak_p))
     row.false_alarms = city_false_alarms.false_alarms(run, eps) if eps else 0
     row.rewarnings = rewarnings(run.warnings)
+    row.dp_sign_changes = sum(episode_flicker(run))
     ant = collision_anticipation(run)
     row.collisions = len(ant)
     row.anticipation_s = [a for a in ant if a is not None]
@@ -128,7 +168,9 @@ def sets(rows):
     """One row per (variant, split): the sums over its networks that ran, and the rates of the
     sums (a set's rate weighs its networks by their vehicle-hours)."""
     out = []
-    keys = sorted({(r.variant, r.split) for r in rows}, key=lambda k: (k[0], k[1] != "tuning"))
+    order = list(dict.fromkeys(r.variant for r in rows))  # as the variants were given
+    keys = sorted({(r.variant, r.split) for r in rows},
+                  key=lambda k: (order.index(k[0]), k[1] != "tuning"))
     for variant, split in keys:
         mine = [r for r in rows if r.variant == variant and r.split == split]
         ok = [r for r in mine if r.status == "ok"]
@@ -140,6 +182,7 @@ def sets(rows):
             s.warnings += r.warnings
             s.false_alarms += r.false_alarms
             s.rewarnings += r.rewarnings
+            s.dp_sign_changes += r.dp_sign_changes
             s.collisions += r.collisions
             s.warned_collisions += r.warned_collisions
         s.anticipation_s = [a for r in ok for a in (r.anticipation_s or [])]
@@ -150,10 +193,12 @@ def sets(rows):
 COLUMNS = ["variant", "split", "network", "step_s", "status", "vehicle_hours", "egos",
            "warnings", "warnings_per_vehicle_hour", "false_alarms",
            "false_alarms_per_vehicle_hour", "rewarnings", "rewarnings_per_vehicle_hour",
-           "collisions", "warned_collisions", "median_anticipation_s"]
+           "dp_sign_changes_per_warning", "collisions", "warned_collisions",
+           "median_anticipation_s"]
 HEADERS = ["variant", "set", "network", "step (s)", "status", "vehicle-hours", "egos",
            "warnings", "warnings / veh-h", "false alarms", "false alarms / veh-h", "re-warnings",
-           "re-warnings / veh-h", "collisions", "warned collisions", "median anticipation (s)"]
+           "re-warnings / veh-h", "dp sign changes / warning", "collisions", "warned collisions",
+           "median anticipation (s)"]
 SET_COLUMNS = [c for c in COLUMNS if c != "step_s"]
 SET_HEADERS = [h for c, h in zip(COLUMNS, HEADERS) if c != "step_s"]
 
@@ -168,7 +213,9 @@ def write(out, rows, info_lines):
         "", "Every vehicle an ego, `--act warn`. A false alarm: a warning episode that no "
         "collision, body overlap or hard braking of its ego followed within 2 s of its end. "
         f"A re-warning: an episode opening within {REWARN_GAP_S:g} s of the end of its ego's "
-        "previous one. A rule is kept only if it helps the held-out set.", ""]
+        "previous one. dp sign changes / warning: how often p turned (by at least "
+        f"{FLICKER_MIN_DP:g} a step) over an episode and the {APPROACH_S:g} s before it: 1 for a "
+        "p that rises once and falls once. A rule is kept only if it helps the held-out set.", ""]
     md = intro + ["## By set", "", tables.markdown(summary, SET_COLUMNS, SET_HEADERS), "",
                   "## By network", "", tables.markdown(per, COLUMNS, HEADERS), ""]
     with open(os.path.join(out, "family.md"), "w", encoding="utf-8") as f:

@@ -447,7 +447,7 @@ class NetworkFamilyTest(unittest.TestCase):
         net = network_family.Network("spider", 3, 0.1)
         cfg = network_family.sumocfg_text(net, ["cars.rou.xml", "peds.rou.xml"])
         self.assertIn('<step-length value="0.1"/>', cfg)
-        self.assertIn('<end value="120"/>', cfg)
+        self.assertIn('<end value="60"/>', cfg)
         self.assertIn("spider3.net.xml", cfg)
         self.assertIn("held-out", cfg)
 
@@ -460,6 +460,18 @@ class FamilyEvalTest(unittest.TestCase):
                w("b", 4.5, 5.0, 0.9)]                          # another ego's
         self.assertEqual(family_eval.rewarnings(eps), 1)
         self.assertEqual(family_eval.rewarnings(eps, gap_s=3.0), 2)
+
+    def test_flicker_counts_the_turns_of_p_over_an_approach(self):
+        # The approach: 0.81, 0.93, 0.0, 0.72, 0.58, 0.69, 1.0, 0.0 turns five times.
+        self.assertEqual(family_eval.dp_sign_changes([0.81, 0.93, 0.0, 0.72, 0.58, 0.69, 1.0,
+                                                      0.0]), 5)
+        self.assertEqual(family_eval.dp_sign_changes([0.0, 0.3, 0.6, 0.9, 1.0, 0.5, 0.0]), 1)
+        # Steps below the minimum change are no turn.
+        self.assertEqual(family_eval.dp_sign_changes([0.5, 0.52, 0.5, 0.53, 0.9]), 0)
+        p = [0.0] * 10 + [0.3, 0.9, 0.2, 0.95, 0.97, 0.0] + [0.0] * 30
+        run = make_run("grid1_0.1s", "a", p)
+        run.warnings = [run_data.Warning("a", 1.1, 1.5, 0.97)]
+        self.assertEqual(family_eval.episode_flicker(run), [3])
 
     def test_network_rows_and_set_sums(self):
         run = make_run("grid1_1s", "a", [0.0] * 36000)  # one vehicle-hour
