@@ -134,6 +134,11 @@ void OptionTable::Estimator(DriverOptions* o) {
       "sizes, classes, lane geometry, signals, turn signals): each vehicle's way on is its "
       "blinker's or straight on, not its route; no route ends, no pedestrians' next edges, a "
       "class's limits instead of its vType's (plugin/README.md, \"Observable-only inputs\")")(
+      "no-crossing-obligations", po::bool_switch(&raw.no_crossing_obligations),
+      "ablation (ours): a pedestrian at a crossing it may not enter yet (red, or no priority "
+      "while a vehicle approaches) is not read as waiting on the footway; the rule reads the "
+      "person's next edge, which only the simulator knows (plugin/README.md, \"Pedestrians "
+      "on the footway\")")(
       "no-car-following", po::bool_switch(&raw.no_car_following),
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(

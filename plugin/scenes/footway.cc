@@ -32,4 +32,15 @@ bool StaysOnFootway(WalkingPlace here, WalkingPlace next) {
   return on_footway && next_on_footway;
 }
 
+bool WaitsAtCrossing(const std::vector<LaneLink>& links, const std::string& crossing_lane) {
+  for (const LaneLink& l : links) {
+    if (l.lane != crossing_lane && l.internal != crossing_lane) continue;
+    const std::string& st = l.state;
+    if (st == "r" || st == "u" || st == "y" || st == "Y") return true;
+    const bool no_priority = st == "s" || st == "w" || st == "m" || st == "=" || st == "g";
+    return no_priority && l.has_foe;
+  }
+  return false;
+}
+
 }  // namespace criticality::plugin

@@ -4,6 +4,9 @@
 // ":JUNCTION_cN" and its walking areas ":JUNCTION_wN"; a sidewalk is a lane of a normal edge
 // that only pedestrians may use.
 #include <string>
+#include <vector>
+
+#include "plugin/network/road_network.h"
 
 namespace criticality::plugin {
 
@@ -21,5 +24,13 @@ WalkingPlace WalkingPlaceOf(const std::string& edge, bool pedestrians_only);
  *  sidewalk or walking area and its next edge is no crossing and no road (a walk that ends
  *  here has a sidewalk as next). */
 bool StaysOnFootway(WalkingPlace here, WalkingPlace next);
+
+/** Whether a person on a walking area, whose next edge is a crossing, must wait there now: the
+ *  link from its walking area into the crossing's lane (`links`: LinksNow of its lane) shows
+ *  red, red-yellow or yellow, or gives the crossing no priority (stop 's', all-way stop 'w',
+ *  minor 'm', equal '=', green without priority 'g') while SUMO has a foe vehicle approaching
+ *  it (`has_foe`). SUMO's persons keep these obligations: such a person stays on the footway
+ *  until it may cross. False when no link leads into the crossing. */
+bool WaitsAtCrossing(const std::vector<LaneLink>& links, const std::string& crossing_lane);
 
 }  // namespace criticality::plugin

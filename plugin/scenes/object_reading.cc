@@ -78,6 +78,11 @@ ObjectSnapshot ObjectReader::Person(const SumoObject& o) {
                                 : WalkingPlaceOf(o.next_edge,
                                                  PedestriansOnly(*network_, o.next_edge + "_0"));
   s.stays_on_footway = StaysOnFootway(here, next);
+  // About to cross where it may not yet: it waits on the footway
+  // (SceneConfig::crossing_obligations).
+  if (!s.stays_on_footway && config_.crossing_obligations && here == WalkingPlace::kWalkingArea &&
+      next == WalkingPlace::kCrossing)
+    s.stays_on_footway = WaitsAtCrossing(network_->LinksNow(s.lane), o.next_edge + "_0");
   return s;
 }
 

@@ -28,6 +28,11 @@ struct SceneConfig {
    *  speeds, headings, sizes and classes, lane geometry, signal states, turn signals): no
    *  routes, route ends, next edges or vType values (plugin/README.md). */
   bool observable_only{false};
+  /** A person on a walking area whose next crossing it may not enter now (red, or no priority
+   *  while a vehicle approaches: WaitsAtCrossing) stays on the footway. Reads the person's next
+   *  edge, which only the simulator knows (off with --observable-only, which does not read it,
+   *  and with --no-crossing-obligations). */
+  bool crossing_obligations{true};
 };
 
 /** How far a vehicle can get within the horizon, at least 10 m: v T + a_max T^2 / 2 (its lane

@@ -35,5 +35,27 @@ TEST(Footway, StaysOnFootwayOnlyWhenNeitherHereNorNextIsRoadOrCrossing) {
   EXPECT_FALSE(StaysOnFootway(P::kRoad, P::kSidewalk));
 }
 
+TEST(Footway, AWalkerWaitsAtACrossingItMayNotEnterYet) {
+  const std::string crossing = ":J_c0_0";
+  auto links = [&](std::string state, bool foe) {
+    return std::vector<LaneLink>{LaneLink{":J_w1_0", "", "G", true, "s"},  // another way on
+                                 LaneLink{crossing, "", state, foe, "s"}};
+  };
+  // Red, red-yellow, yellow: wait, whoever approaches.
+  for (const char* st : {"r", "u", "y"})
+    EXPECT_TRUE(WaitsAtCrossing(links(st, false), crossing)) << st;
+  // No priority: wait while a vehicle approaches, else go.
+  for (const char* st : {"s", "w", "m", "=", "g"}) {
+    EXPECT_TRUE(WaitsAtCrossing(links(st, true), crossing)) << st;
+    EXPECT_FALSE(WaitsAtCrossing(links(st, false), crossing)) << st;
+  }
+  // Priority (a zebra, a green light): it may cross.
+  EXPECT_FALSE(WaitsAtCrossing(links("M", true), crossing));
+  EXPECT_FALSE(WaitsAtCrossing(links("G", true), crossing));
+  // Only the link into the crossing counts; none: no obligation known.
+  EXPECT_FALSE(WaitsAtCrossing({LaneLink{":J_w1_0", "", "r", true, "s"}}, crossing));
+  EXPECT_FALSE(WaitsAtCrossing({}, crossing));
+}
+
 }  // namespace
 }  // namespace criticality::plugin

@@ -182,6 +182,31 @@ TEST(SceneStage, AWalkerKeepsToTheFootwayUnlessItsNextEdgeIsACrossing) {
   EXPECT_DOUBLE_EQ(s.pedestrians[0].length_m, Pedestrian{}.length_m);
 }
 
+TEST(SceneStage, AWalkerWaitingAtACrossingItMayNotEnterKeepsToTheFootway) {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 200, 0, 1);
+  w.AddEdge(":J_w0", 195, -3, 198, -3, 1, 3.0, {"pedestrian"});  // a corner's walking area
+  w.AddEdge(":J_c0", 200, -3, 200, 10, 1, 3.0, {"pedestrian"});  // its crossing
+  w.AddEdge(":K_w0", 185, -3, 188, -3, 1, 3.0, {"pedestrian"});
+  w.AddEdge(":K_c0", 190, -3, 190, 10, 1, 3.0, {"pedestrian"});
+  w.AddLink(":J_w0_0", ":J_c0_0", "s", true);   // no priority, a vehicle approaches: waits
+  w.AddLink(":K_w0_0", ":K_c0_0", "M", true);   // a zebra: it may cross
+  w.AddVehicle("ego", 150, 0, 90, 10, "E_0", 150, {"E"});
+  w.AddPerson("waits", 196, -3, 0, 1.0, ":J_w0_0", ":J_c0");
+  w.AddPerson("goes", 186, -3, 0, 1.0, ":K_w0_0", ":K_c0");
+  auto read = [&](SceneConfig config) {
+    SceneStage stage(config, w.StepLength(), true, &w, &w);
+    return stage.Run(Observe(w, {"ego"})).scenes.at(0);
+  };
+  const Scene s = read(SceneConfig{});
+  ASSERT_EQ(s.pedestrians.size(), 2u);  // ID order: goes, waits
+  EXPECT_FALSE(s.pedestrians[0].stays_on_footway);
+  EXPECT_TRUE(s.pedestrians[1].stays_on_footway);
+  SceneConfig off;
+  off.crossing_obligations = false;  // --no-crossing-obligations
+  EXPECT_FALSE(read(off).pedestrians[1].stays_on_footway);
+}
+
 TEST(SceneStage, YawRateIsTheHeadingChangeOrWithLongStepsTheLanes) {
   FakeSumoWorld w(0.1);
   w.AddEdge("E", 0, 0, 300, 0, 1);
