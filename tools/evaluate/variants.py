@@ -35,6 +35,8 @@ VARIANTS = [
             {"act": "warn", "no-car-following": "true"}),
     Variant("observable", "ours with only what sensors could know (--observable-only: no routes)",
             {"act": "warn", "observable-only": "true"}),
+    Variant("horizon-3", "ours predicting 3 s ahead (--horizon 3) instead of the paper's 2 s",
+            {"act": "warn", "horizon": "3"}),
     Variant("paper-literal", "the first implementation's scoring (ParamsPreset paper-literal)",
             {"act": "warn", "preset": "paper-literal"}),
 ]
