@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "plugin/observe/observation.h"
 #include "plugin/sumo/sumo_world.h"
 
 namespace criticality::plugin::testing {
@@ -260,5 +261,17 @@ class FakeSumoWorld final : public SumoWorld {
   std::map<std::string, double> commanded_;
   StepReport report_;
 };
+
+/** An observation of every object of the world, each vehicle in `egos` an ego with every other
+ *  object near it, read at the world's time (what the observe stage hands the scene stage). */
+inline Observation ObserveAll(FakeSumoWorld& w, const std::vector<std::string>& egos) {
+  Observation obs;
+  obs.time_s = w.StampOfLastStep();
+  obs.sumo_time_s = w.Time();
+  ReadScope scope;
+  scope.context_range_m = 1e9;
+  obs.surroundings = w.Observe(egos, scope);
+  return obs;
+}
 
 }  // namespace criticality::plugin::testing

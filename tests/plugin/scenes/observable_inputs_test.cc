@@ -14,13 +14,7 @@ namespace {
 using testing::FakeSumoWorld;
 
 Observation Observe(FakeSumoWorld& w, const std::vector<std::string>& egos) {
-  Observation obs;
-  obs.time_s = w.StampOfLastStep();
-  obs.sumo_time_s = w.Time();
-  ReadScope scope;
-  scope.context_range_m = 1e9;
-  obs.surroundings = w.Observe(egos, scope);
-  return obs;
+  return testing::ObserveAll(w, egos);
 }
 
 SceneBatch Scenes(FakeSumoWorld& w, const std::vector<std::string>& egos, bool observable) {

@@ -18,16 +18,8 @@ namespace {
 
 using testing::FakeSumoWorld;
 
-// An observation of every object of the world, each vehicle in `egos` an ego with every other
-// object near it, read at the world's time.
 Observation Observe(FakeSumoWorld& w, const std::vector<std::string>& egos) {
-  Observation obs;
-  obs.time_s = w.StampOfLastStep();
-  obs.sumo_time_s = w.Time();
-  ReadScope scope;
-  scope.context_range_m = 1e9;
-  obs.surroundings = w.Observe(egos, scope);
-  return obs;
+  return testing::ObserveAll(w, egos);
 }
 
 SceneStage Stage(FakeSumoWorld& w, bool euler = true) {
