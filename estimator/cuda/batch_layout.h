@@ -2,6 +2,8 @@
 // Host side of a batch of problems for the CUDA kernels (kernel_bodies.h): the concatenated
 // hypothesis sets, probabilities and box sizes, and the prefix sums of BatchLayout. Plain C++:
 // used by the CUDA backend (which uploads it) and by tests (which run the kernel bodies on it).
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "cuda/kernel_bodies.h"
@@ -76,6 +78,50 @@ inline BatchHost MakeBatch(const std::vector<const internal::Problem*>& problems
     b.p_ego.insert(b.p_ego.end(), pb->ego_probability.begin(), pb->ego_probability.end());
   }
   return b;
+}
+
+/** The device memory one problem takes in a batch, as CudaBackend allocates it: its hypothesis
+ *  sets and batch offsets; per ego and CO trajectory and step the poses (x, y, yaw, cos, sin);
+ *  per ego x CO trajectory pair the first colliding step (int16), the risk's event slot (int)
+ *  and contribution (double): 14 bytes a pair; per ego trajectory its probability, histogram
+ *  (steps + 1 ints), sums by step, collision probability and hit flag; per ego trajectory x
+ *  object the hit mass and sums by object; per CO trajectory its index, box and probability;
+ *  its outputs. A batch takes the sum over its problems. */
+inline std::uint64_t DeviceBytes(const internal::Problem& pb) {
+  const std::uint64_t steps = static_cast<std::uint64_t>(pb.Steps());
+  const std::uint64_t ego = static_cast<std::uint64_t>(pb.EgoTrajectories());
+  const std::uint64_t co = static_cast<std::uint64_t>(pb.CoTrajectories());
+  const std::uint64_t obj = pb.cos.size();
+  const std::uint64_t d = sizeof(double);
+  std::uint64_t b = (1 + obj) * sizeof(core::HypothesisSet);   // sets
+  b += 7 * sizeof(int) + 2 * sizeof(long long) + 2 * d;        // offsets, ego box
+  b += (ego + co) * steps * 5 * d;                             // poses
+  b += ego * co * (sizeof(std::int16_t) + sizeof(int) + d);    // pair matrix, risk scratch
+  b += ego * (d + (steps + 1) * sizeof(int) + steps * d + d + 1);
+  b += ego * obj * 2 * d;                                      // hit mass, sums by object
+  b += co * (sizeof(int) + 3 * d) + obj * sizeof(int);         // CO index, box, p; offsets
+  b += (steps + obj + 1) * d;                                  // outputs
+  return b;
+}
+
+/** Consecutive chunks [first, last) of problems whose DeviceBytes (`bytes`) add up to at most
+ *  `budget`, in order, covering every problem; a problem over the budget alone is a chunk of its
+ *  own (its allocation then fails with a CudaError that names what could not be allocated). */
+inline std::vector<std::pair<size_t, size_t>> BatchChunks(const std::vector<std::uint64_t>& bytes,
+                                                          std::uint64_t budget) {
+  std::vector<std::pair<size_t, size_t>> out;
+  size_t first = 0;
+  std::uint64_t sum = 0;
+  for (size_t k = 0; k < bytes.size(); ++k) {
+    if (k > first && sum + bytes[k] > budget) {
+      out.emplace_back(first, k);
+      first = k;
+      sum = 0;
+    }
+    sum += bytes[k];
+  }
+  if (first < bytes.size()) out.emplace_back(first, bytes.size());
+  return out;
 }
 
 }  // namespace criticality::cuda

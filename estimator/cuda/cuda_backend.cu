@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <vector>
 
 #include "core/chronological_risk.h"
@@ -70,6 +71,7 @@ class DeviceArray {
     }
   }
   T* get() const { return ptr_; }
+  size_t bytes() const { return capacity_ * sizeof(T); }
 
  private:
   T* ptr_{nullptr};
@@ -134,9 +136,56 @@ class CudaBackend final : public EstimatorBackend {
     *result = std::move(results.front());
   }
 
+  // A batch larger than the device's memory runs as consecutive chunks, each in one set of
+  // launches (DeviceBytes, BatchChunks; batch_layout.h).
   void RunBatch(const std::vector<const internal::Problem*>& problems, const Params& params,
                 bool keep_pair_matrix, std::vector<Result>* results) override {
     if (problems.empty()) return;
+    std::vector<std::uint64_t> bytes;
+    bytes.reserve(problems.size());
+    for (const internal::Problem* pb : problems) bytes.push_back(DeviceBytes(*pb));
+    const std::vector<std::pair<size_t, size_t>> chunks = BatchChunks(bytes, Budget());
+    if (chunks.size() == 1) {
+      RunChunk(problems, params, keep_pair_matrix, results);
+      return;
+    }
+    for (const auto& [first, last] : chunks) {
+      const std::vector<const internal::Problem*> part(problems.begin() + first,
+                                                        problems.begin() + last);
+      std::vector<Result> out(part.size());
+      RunChunk(part, params, keep_pair_matrix, &out);
+      std::move(out.begin(), out.end(), results->begin() + first);
+    }
+  }
+
+ private:
+  // What a batch may take: 90 % of the device memory that is free now or held by this
+  // backend's buffers (they are freed and allocated again when they grow).
+  // CRITICALITY_CUDA_BATCH_BYTES (bytes) sets it instead, for tests of the chunking.
+  std::uint64_t Budget() const {
+    if (const char* forced = std::getenv("CRITICALITY_CUDA_BATCH_BYTES"); forced && *forced)
+      return std::strtoull(forced, nullptr, 10);
+    size_t free_bytes = 0, total_bytes = 0;
+    Check(cudaMemGetInfo(&free_bytes, &total_bytes), "cudaMemGetInfo");
+    return static_cast<std::uint64_t>(0.9 * static_cast<double>(free_bytes + Reserved()));
+  }
+
+  size_t Reserved() const {
+    size_t n = d_sets_.bytes() + d_first_.bytes() + d_ego_hit_.bytes();
+    for (const auto* a : {&d_set_base_, &d_ego_base_, &d_co_base_, &d_obj_base_, &d_out_base_,
+                          &d_object_of_, &d_co_offset_, &d_hist_, &d_events_})
+      n += a->bytes();
+    for (const auto* a : {&d_pair_base_, &d_ego_obj_base_}) n += a->bytes();
+    for (const auto* a : {&d_co_hl_, &d_co_hw_, &d_ego_hl_, &d_ego_hw_, &d_p_co_, &d_p_ego_, &d_ex_,
+                          &d_ey_, &d_eyaw_, &d_ec_, &d_es_, &d_cx_, &d_cy_, &d_cyaw_, &d_cc_,
+                          &d_cs_, &d_contrib_, &d_mass_, &d_ego_col_, &d_by_step_, &d_by_obj_,
+                          &d_out_})
+      n += a->bytes();
+    return n;
+  }
+
+  void RunChunk(const std::vector<const internal::Problem*>& problems, const Params& params,
+                bool keep_pair_matrix, std::vector<Result>* results) {
     auto t = std::chrono::steady_clock::now();
     Upload(problems);
     LaunchTrajectories();
@@ -218,6 +267,7 @@ class CudaBackend final : public EstimatorBackend {
     }
   }
 
+ public:
   int Threads() const override { return 1; }
   const internal::TrajectoryStore& EgoTrajectories() const override {
     SyncHost();

@@ -3,6 +3,8 @@
 // unavoidability within 1e-4. Skips where no GPU is usable.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <cmath>
 #include <string>
 #include <vector>
@@ -133,6 +135,28 @@ TEST(CudaBackend, BatchInOneLaunchMatchesTheCpu) {
   ASSERT_EQ(batch.size(), scenes.size());
   for (size_t k = 0; k < scenes.size(); ++k) {
     EXPECT_NEAR(batch[k].p_collision, cpu.Estimate(scenes[k]).p_collision, 1e-4) << k;
+  }
+}
+
+// A batch larger than the device's memory budget runs in chunks, each in one set of launches,
+// with the answers of one launch (the budget forced down to one problem per chunk).
+TEST(CudaBackend, ABatchOverTheMemoryBudgetRunsInChunksWithTheSameAnswers) {
+  SKIP_WITHOUT_DEVICE();
+  std::vector<Scene> scenes{bench::PaperSceneS1(), bench::PaperSceneS2()};
+  for (unsigned seed = 1; seed <= 4; ++seed)
+    scenes.push_back(testing::RandomScene(seed, 4, 2, true));
+  EstimatorOptions gpu_opt;
+  gpu_opt.backend = Backend::kCuda;
+  Estimator whole(Params{}, gpu_opt);
+  const std::vector<Result> one = whole.EstimateBatch(scenes);
+  setenv("CRITICALITY_CUDA_BATCH_BYTES", "1", 1);
+  Estimator chunked(Params{}, gpu_opt);
+  const std::vector<Result> parts = chunked.EstimateBatch(scenes);
+  unsetenv("CRITICALITY_CUDA_BATCH_BYTES");
+  ASSERT_EQ(parts.size(), scenes.size());
+  for (size_t k = 0; k < scenes.size(); ++k) {
+    EXPECT_EQ(parts[k].p_collision, one[k].p_collision) << k;
+    EXPECT_EQ(parts[k].first_collision_pmf, one[k].first_collision_pmf) << k;
   }
 }
 
