@@ -171,7 +171,7 @@ def main(argv):
             log(f"evaluate: --variants: unknown variant {e} (known: "
                 f"{', '.join(v.name for v in variant_table.VARIANTS)})")
             return 2
-        if variant_table.REFERENCE not in names:
+        if variant_table.REFERENCE not in names and not a.family:  # the family needs none
             chosen = [variant_table.by_name(variant_table.REFERENCE)] + chosen
     missing = {v.name: v.missing_options(helptext) for v in chosen}
     missing = {k: m for k, m in missing.items() if m}
