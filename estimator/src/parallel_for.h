@@ -2,12 +2,96 @@
 // Splits [0, n) into contiguous chunks run on `threads` threads (the caller's thread included).
 // Each index is processed by exactly one thread, so results written per index are the same
 // whatever the thread count: determinism is kept by reducing afterwards in index order.
+// The helper threads are started once per calling thread and kept (WorkerPool), so that an
+// estimate's five parallel loops do not each start and join threads.
 #include <algorithm>
+#include <condition_variable>
+#include <cstdint>
 #include <exception>
+#include <functional>
+#include <mutex>
 #include <thread>
 #include <vector>
 
 namespace criticality::internal {
+
+/** Helper threads that wait for jobs: Run(parts, job) runs job(t) for t in [0, parts), t = 0 on
+ *  the calling thread and the others on helpers (started when first needed, kept until the pool
+ *  is destroyed), and returns when every part is done. One caller at a time. */
+class WorkerPool {
+ public:
+  WorkerPool() = default;
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+  ~WorkerPool() {
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      stop_ = true;
+    }
+    start_.notify_all();
+    for (std::thread& t : threads_) t.join();
+  }
+
+  void Run(int parts, const std::function<void(int)>& job) {
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      // A new helper starts from the current generation, so it takes the job published below.
+      while (static_cast<int>(threads_.size()) < parts - 1) {
+        const int index = static_cast<int>(threads_.size()) + 1;
+        threads_.emplace_back(&WorkerPool::Loop, this, index, generation_);
+      }
+      job_ = &job;
+      parts_ = parts;
+      pending_ = parts - 1;
+      ++generation_;
+    }
+    start_.notify_all();
+    std::exception_ptr error;
+    try {
+      job(0);
+    } catch (...) {
+      error = std::current_exception();  // the helpers still use job: wait for them first
+    }
+    std::unique_lock<std::mutex> lock(m_);
+    done_.wait(lock, [&] { return pending_ == 0; });
+    job_ = nullptr;
+    if (error) std::rethrow_exception(error);
+  }
+
+ private:
+  void Loop(int index, std::uint64_t seen) {
+    for (;;) {
+      const std::function<void(int)>* job = nullptr;
+      {
+        std::unique_lock<std::mutex> lock(m_);
+        start_.wait(lock, [&] { return stop_ || generation_ != seen; });
+        if (stop_) return;
+        seen = generation_;
+        if (index >= parts_) continue;  // not needed for this job
+        job = job_;
+      }
+      (*job)(index);
+      {
+        std::lock_guard<std::mutex> lock(m_);
+        if (--pending_ == 0) done_.notify_one();
+      }
+    }
+  }
+
+  std::mutex m_;
+  std::condition_variable start_, done_;
+  std::vector<std::thread> threads_;
+  const std::function<void(int)>* job_{nullptr};
+  int parts_{0}, pending_{0};
+  std::uint64_t generation_{0};
+  bool stop_{false};
+};
+
+/** The calling thread's own pool (ParallelFor from several threads at once stays correct). */
+inline WorkerPool& CallersPool() {
+  thread_local WorkerPool pool;
+  return pool;
+}
 
 inline int ResolveThreads(int requested) {
   if (requested > 0) return requested;
@@ -35,10 +119,7 @@ void ParallelFor(int n, int threads, Fn fn) {
       errors[t] = std::current_exception();
     }
   };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker, t);
-  worker(0);
-  for (std::thread& th : pool) th.join();
+  CallersPool().Run(threads, worker);
   for (const std::exception_ptr& e : errors) {
     if (e) std::rethrow_exception(e);
   }

@@ -1,0 +1,53 @@
+// ParallelFor (src/parallel_for.h): every index once whatever the thread count, errors passed
+// on, and the helper threads kept from one call to the next instead of started for each.
+#include "src/parallel_for.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <stdexcept>
+#include <vector>
+
+namespace criticality::internal {
+namespace {
+
+TEST(ParallelFor, EveryIndexOnceWhateverTheThreads) {
+  for (int threads : {1, 2, 3, 8}) {
+    for (int n : {0, 1, 7, 1000}) {
+      std::vector<std::atomic<int>> seen(n);
+      ParallelFor(n, threads, [&](int begin, int end) {
+        for (int i = begin; i < end; ++i) seen[i]++;
+      });
+      for (int i = 0; i < n; ++i) EXPECT_EQ(seen[i].load(), 1) << threads << " " << n << " " << i;
+    }
+  }
+}
+
+thread_local int calls_on_this_thread = 0;
+
+TEST(ParallelFor, HelperThreadsAreKeptAcrossCalls) {
+  // Each part counts the calls its thread has served: a helper started for every call would
+  // count 1 each time; a kept one counts on.
+  const int threads = 3, calls = 20;
+  int most = 0;
+  for (int c = 0; c < calls; ++c) {
+    std::vector<int> counts(threads, 0);
+    CallersPool().Run(threads, [&](int part) { counts[part] = ++calls_on_this_thread; });
+    for (int part = 1; part < threads; ++part) most = std::max(most, counts[part]);
+  }
+  EXPECT_GE(most, calls);  // the helpers served every call
+}
+
+TEST(ParallelFor, AnErrorInAChunkIsRethrownAndThePoolGoesOn) {
+  EXPECT_THROW(ParallelFor(100, 3,
+                           [](int begin, int) {
+                             if (begin == 0) throw std::runtime_error("chunk 0");
+                           }),
+               std::runtime_error);
+  std::atomic<int> sum{0};
+  ParallelFor(100, 3, [&](int begin, int end) { sum += end - begin; });
+  EXPECT_EQ(sum.load(), 100);
+}
+
+}  // namespace
+}  // namespace criticality::internal
