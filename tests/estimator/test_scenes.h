@@ -74,4 +74,22 @@ inline Scene RandomScene(unsigned seed, int max_vehicles, int max_pedestrians, b
   return s;
 }
 
+/** The scene with every vehicle made a `user` (a truck, a train) pulling two 10 m carriages
+ *  behind it along its heading, 1 m apart: long bodies for the backends' tests. */
+inline Scene WithTrailers(Scene s, RoadUser user) {
+  for (Vehicle& v : s.vehicles) {
+    v.type.road_user = user;
+    for (int k = 0; k < 2; ++k) {
+      Carriage c;
+      c.x_m = v.state.x_m - 0.5 * v.length_m - 0.5 - 5.0 - 10.5 * k;
+      c.y_m = v.state.y_m;
+      c.length_m = 10.0;
+      c.width_m = v.width_m;
+      c.lanes = v.lanes;
+      v.carriages.push_back(c);
+    }
+  }
+  return s;
+}
+
 }  // namespace criticality::testing

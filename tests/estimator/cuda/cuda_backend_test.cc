@@ -162,27 +162,11 @@ TEST(CudaBackend, ABatchOverTheMemoryBudgetRunsInChunksWithTheSameAnswers) {
 
 // Long bodies: the device simulates and checks every carriage; the host folds each such
 // problem's pair matrix and assesses its risk, in a batch beside problems the device assesses.
-Scene WithTrailers(Scene s, RoadUser user) {
-  for (Vehicle& v : s.vehicles) {
-    v.type.road_user = user;
-    for (int k = 0; k < 2; ++k) {
-      Carriage c;
-      c.x_m = v.state.x_m - 0.5 * v.length_m - 0.5 - 5.0 - 10.5 * k;
-      c.y_m = v.state.y_m;
-      c.length_m = 10.0;
-      c.width_m = v.width_m;
-      c.lanes = v.lanes;
-      v.carriages.push_back(c);
-    }
-  }
-  return s;
-}
-
 TEST(CudaBackend, ScenesWithCarriagesInABatchMatchTheCpu) {
   SKIP_WITHOUT_DEVICE();
-  const std::vector<Scene> scenes{WithTrailers(bench::PaperSceneS1(), RoadUser::kHeavy),
-                                  bench::PaperSceneS2(),
-                                  WithTrailers(bench::PaperSceneS2(), RoadUser::kRail)};
+  const std::vector<Scene> scenes{
+      testing::WithTrailers(bench::PaperSceneS1(), RoadUser::kHeavy), bench::PaperSceneS2(),
+      testing::WithTrailers(bench::PaperSceneS2(), RoadUser::kRail)};
   EstimatorOptions gpu_opt, cpu_opt;
   gpu_opt.backend = Backend::kCuda;
   gpu_opt.keep_pair_matrix = cpu_opt.keep_pair_matrix = true;

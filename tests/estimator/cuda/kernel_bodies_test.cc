@@ -167,24 +167,9 @@ TEST(CudaKernelBodies, ProblemsWithCarriagesAreFoldedAndAssessedOnTheHostAsTheCp
   // bodies"): the kernels simulate and check every set, carriages included; the problem's
   // slice of the pair matrix is then folded and assessed on the host (AssessBodies), in a
   // batch beside problems assessed by the risk kernels.
-  auto with_trailers = [](Scene s, RoadUser user) {
-    for (Vehicle& v : s.vehicles) {
-      v.type.road_user = user;
-      for (int k = 0; k < 2; ++k) {
-        Carriage c;
-        c.x_m = v.state.x_m - 0.5 * v.length_m - 0.5 - 5.0 - 10.5 * k;
-        c.y_m = v.state.y_m;
-        c.length_m = 10.0;
-        c.width_m = v.width_m;
-        c.lanes = v.lanes;
-        v.carriages.push_back(c);
-      }
-    }
-    return s;
-  };
-  const std::vector<Scene> scenes{with_trailers(bench::PaperSceneS1(), RoadUser::kHeavy),
-                                  bench::PaperSceneS1(),
-                                  with_trailers(bench::PaperSceneS2(), RoadUser::kRail)};
+  const std::vector<Scene> scenes{
+      testing::WithTrailers(bench::PaperSceneS1(), RoadUser::kHeavy), bench::PaperSceneS1(),
+      testing::WithTrailers(bench::PaperSceneS2(), RoadUser::kRail)};
   const Params params;
   std::vector<internal::Problem> problems;
   for (const Scene& scene : scenes) problems.push_back(internal::BuildProblem(scene, params));
