@@ -112,6 +112,132 @@ CRIT_HD void TrackStep(const HypothesisSet& h, double v_dot, double tau, Simulat
   s.ay = s.v * s.yaw_rate;
 }
 
+/** What one vehicle simulation keeps from step to step besides its state: the frame change
+ *  and, as the slip profile is constant once its ramp ends, its last tyre-curve value. */
+struct StepContext {
+  double c0{1.0}, s0{0.0};  ///< cos/sin of the local frame's yaw in the scene frame
+  double mu_g{0.0};
+  double cached_slip{0.0};
+  double cached_factor{0.0};
+};
+
+CRIT_HD StepContext MakeStepContext(const HypothesisSet& h) {
+  StepContext c;
+  c.c0 = std::cos(h.X_WL.yaw);
+  c.s0 = std::sin(h.X_WL.yaw);
+  c.mu_g = h.vehicle.friction * kGravity;
+  c.cached_slip = 0.0;
+  c.cached_factor = LongitudinalForceFactor(0.0);
+  return c;
+}
+
+/** The instant in force at time t, advanced from the current one (instants only move on). */
+CRIT_HD int InstantAt(const HypothesisSet& h, int instant, double t) {
+  int k = instant;  // explicit bounds keep the compiler's array-bounds check quiet
+  while (k >= 0 && k < h.n_instants - 1 && k < kMaxSampleInstants - 1 && t >= h.instant_time[k])
+    ++k;
+  return k;
+}
+
+/** The tyre-curve value of a slip (two-track profiles), through the context's one-value memo. */
+CRIT_HD double SlipFactor(StepContext* c, double slip) {
+  if (slip != c->cached_slip) {
+    c->cached_slip = slip;
+    c->cached_factor = LongitudinalForceFactor(slip);
+  }
+  return c->cached_factor;
+}
+
+/** Where the pose after a step goes in the scene frame: far away once the vehicle has left,
+ *  else its local pose (shifted along the step's course (cx, cy) for an Euler-updating
+ *  simulator) turned into the scene frame. */
+CRIT_HD void StorePose(const HypothesisSet& h, const StepContext& c, const SimulationState& st,
+                       double cx, double cy, double* x, double* y, double* yaw) {
+  const MotionState& s = st.s;
+  if (st.travelled > h.leave_distance) {  // it has left the scene
+    *x = GoneX(h);
+    *y = 0.0;
+  } else {
+    double px = s.x, py = s.y;
+    if (h.position_lead > 0.0) ShiftAlongCourse(h.position_lead, s.v, h.v0, cx, cy, &px, &py);
+    *x = h.X_WL.x + c.c0 * px - c.s0 * py;
+    *y = h.X_WL.y + c.s0 * px + c.c0 * py;
+  }
+  *yaw = h.X_WL.yaw + s.yaw;
+}
+
+/** Advances a VEHICLE hypothesis (profile, path) by step n (time n tau to (n+1) tau) from
+ *  `st` and writes the pose after it (scene frame) to *x, *y, *yaw. */
+CRIT_HD void VehicleStep(const HypothesisSet& h, const SimulationConfig& cfg, int profile,
+                         int path, int n, StepContext* ctx, SimulationState* st, double* x,
+                         double* y, double* yaw) {
+  const double tau = cfg.tau;
+  const double target = h.profile_target[profile];
+  const double mu_g = ctx->mu_g;
+  MotionState& s = st->s;
+  const double t = n * tau;
+  st->instant = InstantAt(h, st->instant, t);
+  // Trig of yaw and sideslip once per step; the course by the angle-sum identities.
+  double cb = std::cos(s.beta), sb = std::sin(s.beta);
+  const double cy = std::cos(s.yaw), sy = std::sin(s.yaw);
+  if (h.on_track) {
+    double a = RampedValue(t, h.profile_start, target, h.latency, h.rate);
+    if (h.model == MotionModelKind::kTwoTrack)  // a force demand or a slip: in m/s^2
+      a = mu_g * (h.force_profiles ? a : LongitudinalForceFactor(a));
+    if (h.power_limited && a > 0.0) a = Min(a, DriveAccelLimit(h, s.v));
+    if (h.vehicle.friction_limited) a = Clamp(a, -mu_g, mu_g);
+    a = NonReversingAccel(s.v, TopSpeedAccel(s.v, a, tau, h.top_speed), tau);
+    st->steer = 0.0;
+    TrackStep(h, a, tau, st);
+  } else {
+    // Lateral reaction latency: until then the vehicle follows its reference path; its
+    // hypothesis' path section after it.
+    const bool latent = t < h.steer_latency;
+    const int lateral = SectionOfPath(h, path, st->instant);
+    const Parabola& section = latent ? h.reference_path : h.section[st->instant][lateral];
+    if (cfg.controller.feedback) {
+      st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau, cy * cb - sy * sb,
+                                  sy * cb + cy * sb,
+                                  h.steer_feedforward ? h.vehicle.lf_m + h.vehicle.lr_m : 0.0);
+    } else {  // the "controller off" ablation: one open-loop angle per section, held
+      const int key = latent ? -1 : st->instant * kMaxLateralSamples + lateral;
+      if (key != st->held_section) {
+        st->held_section = key;
+        st->held_steer =
+            latent ? InitialSteer(h, cfg.controller)
+                   : OpenLoopSteer(cfg.controller, section, s, h.vehicle.lf_m + h.vehicle.lr_m,
+                                   Max(h.instant_time[st->instant] - t, 0.5));
+      }
+      const double rate = cfg.controller.max_steer_rate_radps * tau;
+      st->steer = Clamp(st->held_steer, st->steer - rate, st->steer + rate);
+    }
+    double longitudinal = RampedValue(t, h.profile_start, target, h.latency, h.rate);
+    const bool kinematic = s.v < h.seam_speed;
+    StateDerivative d;
+    if (h.model == MotionModelKind::kTwoTrack) {
+      double factor = h.force_profiles ? longitudinal : SlipFactor(ctx, longitudinal);
+      if (h.power_limited && factor > 0.0) factor = Min(factor, DriveAccelLimit(h, s.v) / mu_g);
+      if (kinematic) {
+        d = KinematicSingleTrack(h.vehicle, st->steer, mu_g * factor, &s);
+      } else {
+        d = TwoTrackDerivative(h.vehicle, s, st->steer, factor, cb, sb);
+      }
+    } else {
+      if (h.power_limited && longitudinal > 0.0)
+        longitudinal = Min(longitudinal, DriveAccelLimit(h, s.v));
+      d = kinematic ? KinematicSingleTrack(h.vehicle, st->steer, longitudinal, &s)
+                    : OneTrackDerivative(h.vehicle, s, st->steer, longitudinal);
+    }
+    if (kinematic) cb = std::cos(s.beta), sb = std::sin(s.beta);  // the kinematic model set beta
+    d.v_dot = NonReversingAccel(s.v, TopSpeedAccel(s.v, d.v_dot, tau, h.top_speed), tau);
+    EulerStep(d, tau, &s, cb, sb, cy, sy);
+  }
+  if (s.v < 0.0) s.v = 0.0;  // rounding guard
+  st->travelled += s.v * tau;
+  // The course of this step (cy, sy, cb, sb from its start).
+  StorePose(h, *ctx, *st, cy * cb - sy * sb, sy * cb + cy * sb, x, y, yaw);
+}
+
 /** Advances a VEHICLE hypothesis (profile, path) over steps [n_begin, n_end) from `st`,
  *  writing the poses (scene frame) of those steps to x[n * stride], y[..], yaw[..]. For a
  *  shared prefix, any path of the group gives the same sections (SectionOfPath) up to the
@@ -120,101 +246,12 @@ CRIT_HD void SimulateVehicleSteps(const HypothesisSet& h, const SimulationConfig
                                   int path, int n_begin, int n_end, SimulationState* st, double* x,
                                   double* y, double* yaw, int stride = 1,
                                   StepTrace* trace = nullptr) {
-  const double tau = cfg.tau;
-  const double target = h.profile_target[profile];
-  const double c0 = std::cos(h.X_WL.yaw), s0 = std::sin(h.X_WL.yaw);
-  const double mu_g = h.vehicle.friction * kGravity;
-  MotionState& s = st->s;
-  // The slip profile is constant once its ramp ends: its tyre-curve value is reused then.
-  double cached_slip = 0.0, cached_factor = LongitudinalForceFactor(0.0);
+  StepContext ctx = MakeStepContext(h);
   for (int n = n_begin; n < n_end; ++n) {
-    const double t = n * tau;
-    int k = st->instant;  // explicit bounds keep the compiler's array-bounds check quiet
-    while (k >= 0 && k < h.n_instants - 1 && k < kMaxSampleInstants - 1 && t >= h.instant_time[k])
-      ++k;
-    st->instant = k;
-    // Trig of yaw and sideslip once per step; the course by the angle-sum identities.
-    double cb = std::cos(s.beta), sb = std::sin(s.beta);
-    const double cy = std::cos(s.yaw), sy = std::sin(s.yaw);
-    if (h.on_track) {
-      double a = RampedValue(t, h.profile_start, target, h.latency, h.rate);
-      if (h.model == MotionModelKind::kTwoTrack)  // a force demand or a slip: in m/s^2
-        a = mu_g * (h.force_profiles ? a : LongitudinalForceFactor(a));
-      if (h.power_limited && a > 0.0) a = Min(a, DriveAccelLimit(h, s.v));
-      if (h.vehicle.friction_limited) a = Clamp(a, -mu_g, mu_g);
-      a = NonReversingAccel(s.v, TopSpeedAccel(s.v, a, tau, h.top_speed), tau);
-      st->steer = 0.0;
-      TrackStep(h, a, tau, st);
-    } else {
-      // Lateral reaction latency: until then the vehicle follows its reference path; its
-      // hypothesis' path section after it.
-      const bool latent = t < h.steer_latency;
-      const int lateral = SectionOfPath(h, path, st->instant);
-      const Parabola& section = latent ? h.reference_path : h.section[st->instant][lateral];
-      if (cfg.controller.feedback) {
-        st->steer = SteeringCommand(cfg.controller, section, s, st->steer, tau, cy * cb - sy * sb,
-                                    sy * cb + cy * sb,
-                                    h.steer_feedforward ? h.vehicle.lf_m + h.vehicle.lr_m : 0.0);
-      } else {  // the "controller off" ablation: one open-loop angle per section, held
-        const int key = latent ? -1 : st->instant * kMaxLateralSamples + lateral;
-        if (key != st->held_section) {
-          st->held_section = key;
-          st->held_steer =
-              latent ? InitialSteer(h, cfg.controller)
-                     : OpenLoopSteer(cfg.controller, section, s, h.vehicle.lf_m + h.vehicle.lr_m,
-                                     Max(h.instant_time[st->instant] - t, 0.5));
-        }
-        const double rate = cfg.controller.max_steer_rate_radps * tau;
-        st->steer = Clamp(st->held_steer, st->steer - rate, st->steer + rate);
-      }
-      double longitudinal = RampedValue(t, h.profile_start, target, h.latency, h.rate);
-      const bool kinematic = s.v < h.seam_speed;
-      StateDerivative d;
-      if (h.model == MotionModelKind::kTwoTrack) {
-        double factor;
-        if (h.force_profiles) {
-          factor = longitudinal;
-        } else {
-          if (longitudinal != cached_slip) {
-            cached_slip = longitudinal;
-            cached_factor = LongitudinalForceFactor(longitudinal);
-          }
-          factor = cached_factor;
-        }
-        if (h.power_limited && factor > 0.0) factor = Min(factor, DriveAccelLimit(h, s.v) / mu_g);
-        if (kinematic) {
-          d = KinematicSingleTrack(h.vehicle, st->steer, mu_g * factor, &s);
-        } else {
-          d = TwoTrackDerivative(h.vehicle, s, st->steer, factor, cb, sb);
-        }
-      } else {
-        if (h.power_limited && longitudinal > 0.0)
-          longitudinal = Min(longitudinal, DriveAccelLimit(h, s.v));
-        d = kinematic ? KinematicSingleTrack(h.vehicle, st->steer, longitudinal, &s)
-                      : OneTrackDerivative(h.vehicle, s, st->steer, longitudinal);
-      }
-      if (kinematic) cb = std::cos(s.beta), sb = std::sin(s.beta);  // the kinematic model set beta
-      d.v_dot = NonReversingAccel(s.v, TopSpeedAccel(s.v, d.v_dot, tau, h.top_speed), tau);
-      EulerStep(d, tau, &s, cb, sb, cy, sy);
-    }
-    if (s.v < 0.0) s.v = 0.0;  // rounding guard
-    st->travelled += s.v * tau;
-    // Local frame -> scene frame (LocalToWorld with the rotation hoisted out of the loop).
     const size_t at = static_cast<size_t>(n) * stride;
-    if (st->travelled > h.leave_distance) {  // it has left the scene
-      x[at] = GoneX(h);
-      y[at] = 0.0;
-    } else {
-      double px = s.x, py = s.y;
-      if (h.position_lead > 0.0)  // the course of this step (cy, sy, cb, sb from its start)
-        ShiftAlongCourse(h.position_lead, s.v, h.v0, cy * cb - sy * sb, sy * cb + cy * sb, &px,
-                         &py);
-      x[at] = h.X_WL.x + c0 * px - s0 * py;
-      y[at] = h.X_WL.y + s0 * px + c0 * py;
-    }
-    yaw[at] = h.X_WL.yaw + s.yaw;
+    VehicleStep(h, cfg, profile, path, n, &ctx, st, &x[at], &y[at], &yaw[at]);
     if (trace) {
-      trace->state[n] = s;
+      trace->state[n] = st->s;
       trace->steer[n] = st->steer;
     }
   }
@@ -237,7 +274,8 @@ CRIT_HD void SimulateHypothesis(const HypothesisSet& h, const SimulationConfig& 
                                 int path, double* x, double* y, double* yaw, int stride = 1,
                                 StepTrace* trace = nullptr) {
   if (h.model == MotionModelKind::kPedestrian) {
-    const double heading = h.heading[path];
+    // (path < n_lateral <= kMaxLateralSamples; the bound keeps the array-bounds check quiet)
+    const double heading = h.heading[path < kMaxLateralSamples ? path : kMaxLateralSamples - 1];
     const double target = h.profile_target[profile];
     const double v0 = Clamp(h.v0, 0.0, h.max_speed);
     const double ch = std::cos(heading), sh = std::sin(heading);
