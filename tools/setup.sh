@@ -12,7 +12,7 @@ BUILD_DIR=${BUILD_DIR:-build}
 BUILD_TYPE=${BUILD_TYPE:-Release}
 JOBS=${JOBS:-$(nproc)}
 
-packages=(cmake g++ make libeigen3-dev libboost-program-options-dev libgtest-dev libsqlite3-dev
+packages=(cmake g++ make libeigen3-dev libhwy-dev libboost-program-options-dev libgtest-dev libsqlite3-dev
           sqlite3 sumo sumo-tools libfcl-dev libboost-dev libyaml-cpp-dev nlohmann-json3-dev
           python3-matplotlib chromium)  # chromium: the campaign report's browser test
 missing=()

@@ -37,6 +37,7 @@ struct Options {
   bool json{false};
   bool report{false};
   bool compare{false};
+  bool no_simd{false};
   int cos{-1};
   int batch{0};
   std::string preset{"default"};
@@ -192,6 +193,7 @@ int Discrimination(const Params& params, const Options& opt) {
   EstimatorOptions eopt;
   eopt.backend = ParseBackend(opt.backend);
   eopt.threads = opt.threads;
+  eopt.simd = !opt.no_simd;
   Estimator estimator(params, eopt);
   std::printf("discrimination benchmark, preset %s, backend %s\n", opt.preset.c_str(),
               BackendName(estimator.options().backend).c_str());
@@ -248,6 +250,7 @@ int Batch(const Scene& scene, const Params& params, const Options& opt) {
   EstimatorOptions eopt;
   eopt.backend = ParseBackend(opt.backend);
   eopt.threads = opt.threads;
+  eopt.simd = !opt.no_simd;
   Estimator estimator(params, eopt);
   for (int k = 0; k < opt.warmup; ++k) estimator.EstimateBatch(scenes);
   std::vector<double> ms;
@@ -278,14 +281,21 @@ int Batch(const Scene& scene, const Params& params, const Options& opt) {
 
 // Every backend on the same scene, one after the other in this process.
 int Compare(const Scene& scene, const Params& params, const Options& opt) {
-  std::vector<Backend> backends{Backend::kReference, Backend::kCpu};
-  if (CudaUsable(nullptr)) backends.push_back(Backend::kCuda);
+  // The cpu fast path twice: scalar (bit for bit the reference's pair matrix) and with SIMD.
+  std::vector<Backend> backends{Backend::kReference, Backend::kCpu, Backend::kCpu};
+  std::vector<std::string> names{"reference", "cpu-scalar", "cpu"};
+  if (CudaUsable(nullptr)) {
+    backends.push_back(Backend::kCuda);
+    names.push_back("cuda");
+  }
   std::vector<Timing> runs;
   std::vector<int> threads;
-  for (Backend b : backends) {
+  for (size_t k = 0; k < backends.size(); ++k) {
+    const Backend b = backends[k];
     EstimatorOptions eopt;
     eopt.backend = b;
     eopt.threads = opt.threads;
+    eopt.simd = names[k] != "cpu-scalar";
     eopt.keep_pair_matrix = true;
     // The reference is slow: fewer repetitions keep --compare usable on S2.
     const int repeat = b == Backend::kReference ? std::max(1, std::min(opt.repeat, 3)) : opt.repeat;
@@ -317,14 +327,14 @@ int Compare(const Scene& scene, const Params& params, const Options& opt) {
     char agree[160];
     std::snprintf(agree, sizeof agree, "%zu of %zu pairs differ, |dp_cra| = %.1e", differing,
                   r.first_collision_step.size(), dp);
-    std::printf("%-10s %7d %10.3f %10.3f %14.3e %9.1f  %s\n", BackendName(backends[k]).c_str(),
+    std::printf("%-10s %7d %10.3f %10.3f %14.3e %9.1f  %s\n", names[k].c_str(),
                 threads[k], median, min, c.pose_combinations / (median * 1e-3), ref_median / median,
                 agree);
     char item[400];
     std::snprintf(item, sizeof item,
                   "%s{\"backend\":\"%s\",\"threads\":%d,\"median_ms\":%.6f,\"min_ms\":%.6f,"
                   "\"speedup_vs_reference\":%.3f,\"differing_pairs\":%zu,\"p_collision\":%.17g}",
-                  k ? "," : "", BackendName(backends[k]).c_str(), threads[k], median, min,
+                  k ? "," : "", names[k].c_str(), threads[k], median, min,
                   ref_median / median, differing, r.p_collision);
     json += item;
   }
@@ -356,6 +366,7 @@ int Paths(const Scene& scene, Params params, const Options& opt) {
   EstimatorOptions eopt;
   eopt.backend = ParseBackend(opt.backend);
   eopt.threads = opt.threads;
+  eopt.simd = !opt.no_simd;
   Estimator estimator(params, eopt);
   const Result r = estimator.Estimate(scene);
   std::vector<const EscapeRoute*> probable, colliding;
@@ -428,8 +439,12 @@ int main(int argc, char** argv) {
       "repeat", po::value(&opt.repeat)->default_value(opt.repeat), "timed estimates")(
       "warmup", po::value(&opt.warmup)->default_value(opt.warmup), "untimed estimates first")(
       "json", po::bool_switch(&opt.json), "print one JSON object as the last line of stdout")(
+      "no-simd", po::bool_switch(&opt.no_simd),
+      "cpu backend: the scalar fast path (bit for bit the reference's pair matrix) instead of "
+      "sibling ego paths in SIMD lanes (within 3 ulp per sin/cos/atan; grazing contacts may "
+      "differ)")(
       "compare", po::bool_switch(&opt.compare),
-      "run every available backend (reference, cpu, cuda) on the same scene in this process and "
+      "run every available backend (reference, cpu-scalar, cpu, cuda) on the same scene in this process and "
       "print a table: times, pose combinations per second, ratio to the reference, agreement")(
       "cos", po::value(&opt.cos),
       "instead of --scene: the scaling scene with this many other vehicles (e.g. 1 3 10 30 100)")(
@@ -473,6 +488,7 @@ int main(int argc, char** argv) {
     EstimatorOptions eopt;
     eopt.backend = ParseBackend(opt.backend);
     eopt.threads = opt.threads;
+    eopt.simd = !opt.no_simd;
     if (opt.cos > 100000)
       throw InputError("--cos = " + std::to_string(opt.cos) + ": at most 100000");
     Scene scene;

@@ -6,6 +6,7 @@
 
 #include "core/oriented_box.h"
 #include "core/trajectory_generation.h"
+#include "cpu/sibling_steps.h"
 #include "src/parallel_for.h"
 
 namespace criticality {
@@ -45,15 +46,20 @@ int Power(int base, int exp) {
 
 }  // namespace
 
-CpuBackend::CpuBackend(int threads) : threads_(internal::ResolveThreads(threads)) {}
+CpuBackend::CpuBackend(int threads, bool simd)
+    : threads_(internal::ResolveThreads(threads)), simd_(simd) {}
 
 void CpuBackend::FinishSpan(const TrajectoryStore& t, std::vector<double>* c,
                             std::vector<double>* s, BlockBounds* b, int tr, int n0, int n1, int q0,
                             int q1) const {
   const size_t base = t.Offset(tr);
-  for (int n = n0; n < n1; ++n) {
-    (*c)[base + n] = std::cos(t.yaw[base + n]);
-    (*s)[base + n] = std::sin(t.yaw[base + n]);
+  if (simd_) {
+    internal::CosSin(&t.yaw[base + n0], n1 - n0, &(*c)[base + n0], &(*s)[base + n0]);
+  } else {
+    for (int n = n0; n < n1; ++n) {
+      (*c)[base + n] = std::cos(t.yaw[base + n]);
+      (*s)[base + n] = std::sin(t.yaw[base + n]);
+    }
   }
   const int blocks = static_cast<int>(block_begin_.size()) - 1;
   const double* x = &t.x[base];
@@ -106,39 +112,79 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   co_cos_.resize(co_.yaw.size());
   co_sin_.resize(co_.yaw.size());
 
-  // Ego: one task per (profile, first section); each walks its subtree of the section tree,
-  // simulating every node's span once on its representative path (with its cos/sin and block
-  // bounds), then copying that span to the node's other paths.
-  auto node = [&](auto&& self, int profile, int k, int group, core::SimulationState st) -> void {
-    if (k >= core::kMaxSampleInstants) return;  // never: K <= kMaxSampleInstants
-    const int width = Power(L, K - 1 - k);      // paths below this node
-    const int first = profile * ego.n_paths + group * width;
-    const size_t at = ego_.Offset(first);
+  // Ego: the section tree, one node per (profile, instant k, group of paths that share their
+  // first k + 1 sections). The children of a node (or, at the top, of the profile) start from
+  // its end state and are simulated together over their span (in SIMD lanes when simd_), each
+  // on its group's first path, with its cos/sin and block bounds; each span is then copied to
+  // the group's other paths.
+  const bool lanes = simd_ && internal::SiblingStepsApply(ego, pb.sim);
+  auto children = [&](int profile, int k, int parent, const core::SimulationState& st,
+                      internal::SiblingSpan* span) {
+    const int width = Power(L, K - 1 - k);  // paths below each child
     const int n0 = boundary_[k], n1 = boundary_[k + 1];
-    core::SimulateVehicleSteps(ego, pb.sim, profile, group * width, n0, n1, &st, &ego_.x[at],
-                               &ego_.y[at], &ego_.yaw[at]);
-    FinishSpan(ego_, &ego_cos_, &ego_sin_, &ego_bounds_, first, n0, n1, phase_block_[k],
-               phase_block_[k + 1]);
-    const size_t span = n1 - n0;
-    const size_t qspan = phase_block_[k + 1] - phase_block_[k];
-    const size_t qfrom = static_cast<size_t>(first) * blocks + phase_block_[k];
-    for (int p = 1; p < width; ++p) {
-      const size_t to = ego_.Offset(first + p) + n0, from = at + n0;
-      for (std::vector<double>* v : {&ego_.x, &ego_.y, &ego_.yaw, &ego_cos_, &ego_sin_}) {
-        std::memcpy(v->data() + to, v->data() + from, span * sizeof(double));
-      }
-      const size_t qto = static_cast<size_t>(first + p) * blocks + phase_block_[k];
-      for (std::vector<double>* v : {&ego_bounds_.cx, &ego_bounds_.cy, &ego_bounds_.r}) {
-        std::memcpy(v->data() + qto, v->data() + qfrom, qspan * sizeof(double));
+    span->h = &ego;
+    span->cfg = &pb.sim;
+    span->profile = profile;
+    span->n_begin = n0;
+    span->n_end = n1;
+    span->lanes = L;
+    for (int c = 0; c < L; ++c) {
+      const int group = parent * L + c;
+      const size_t at = ego_.Offset(profile * ego.n_paths + group * width);
+      span->path[c] = group * width;
+      span->state[c] = st;
+      span->x[c] = &ego_.x[at];
+      span->y[c] = &ego_.y[at];
+      span->yaw[c] = &ego_.yaw[at];
+    }
+    if (lanes) {
+      internal::SimulateSiblingSteps(span);
+    } else {
+      for (int c = 0; c < L; ++c) {
+        core::SimulateVehicleSteps(ego, pb.sim, profile, span->path[c], n0, n1, &span->state[c],
+                                   span->x[c], span->y[c], span->yaw[c]);
       }
     }
-    if (k + 1 < K) {
-      for (int c = 0; c < L; ++c) self(self, profile, k + 1, group * L + c, st);
+    const size_t n_span = n1 - n0;
+    const size_t qspan = phase_block_[k + 1] - phase_block_[k];
+    for (int c = 0; c < L; ++c) {
+      const int first = profile * ego.n_paths + (parent * L + c) * width;
+      const size_t at = ego_.Offset(first);
+      FinishSpan(ego_, &ego_cos_, &ego_sin_, &ego_bounds_, first, n0, n1, phase_block_[k],
+                 phase_block_[k + 1]);
+      const size_t qfrom = static_cast<size_t>(first) * blocks + phase_block_[k];
+      for (int p = 1; p < width; ++p) {
+        const size_t to = ego_.Offset(first + p) + n0, from = at + n0;
+        for (std::vector<double>* v : {&ego_.x, &ego_.y, &ego_.yaw, &ego_cos_, &ego_sin_}) {
+          std::memcpy(v->data() + to, v->data() + from, n_span * sizeof(double));
+        }
+        const size_t qto = static_cast<size_t>(first + p) * blocks + phase_block_[k];
+        for (std::vector<double>* v : {&ego_bounds_.cx, &ego_bounds_.cy, &ego_bounds_.r}) {
+          std::memcpy(v->data() + qto, v->data() + qfrom, qspan * sizeof(double));
+        }
+      }
     }
   };
+  auto subtree = [&](auto&& self, int profile, int k, int group,
+                     const core::SimulationState& st) -> void {
+    if (k + 1 >= K || k + 1 >= core::kMaxSampleInstants) return;
+    internal::SiblingSpan span;
+    children(profile, k + 1, group, st, &span);
+    for (int c = 0; c < L; ++c) self(self, profile, k + 1, group * L + c, span.state[c]);
+  };
+  // The first sections of each profile, then one task per (profile, first section) below them.
   const core::SimulationState start = core::InitialSimulationState(ego, pb.sim);
+  std::vector<core::SimulationState> first_state(static_cast<size_t>(ego.n_profiles) * L);
+  internal::ParallelFor(ego.n_profiles, threads_, [&](int begin, int end) {
+    for (int profile = begin; profile < end; ++profile) {
+      internal::SiblingSpan span;
+      children(profile, 0, 0, start, &span);
+      for (int c = 0; c < L; ++c) first_state[static_cast<size_t>(profile) * L + c] = span.state[c];
+    }
+  });
   internal::ParallelFor(ego.n_profiles * L, threads_, [&](int begin, int end) {
-    for (int task = begin; task < end; ++task) node(node, task / L, 0, task % L, start);
+    for (int task = begin; task < end; ++task)
+      subtree(subtree, task / L, 0, task % L, first_state[task]);
   });
   // Collision objects: no shared prefixes (each keeps one lateral sample throughout).
   internal::ParallelFor(pb.CoTrajectories(), threads_, [&](int begin, int end) {

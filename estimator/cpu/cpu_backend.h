@@ -15,6 +15,9 @@
 //    its descendant paths from its span to the horizon, each CO trajectory one around its
 //    poses over the same steps; when they are apart, no descendant can collide.
 //  - cos/sin of every pose computed once; threads over independent tree roots.
+//  - With simd (the default), the children of a node are simulated together in SIMD lanes
+//    (cpu/sibling_steps.h) and cos/sin come from vector math: the pair matrix then equals the
+//    reference's except for grazing contacts.
 #include <vector>
 
 #include "core/hypothesis_set.h"
@@ -24,7 +27,8 @@ namespace criticality {
 
 class CpuBackend final : public EstimatorBackend {
  public:
-  explicit CpuBackend(int threads);
+  /** @param simd sibling ego paths in SIMD lanes and vector cos/sin (EstimatorOptions::simd). */
+  CpuBackend(int threads, bool simd);
   void GenerateTrajectories(const internal::Problem& problem) override;
   void RecognizeCollisions(const internal::Problem& problem,
                            std::vector<std::int16_t>* first_step) override;
@@ -48,6 +52,7 @@ class CpuBackend final : public EstimatorBackend {
                   int q1) const;
 
   int threads_;
+  bool simd_;
   internal::TrajectoryStore ego_;
   internal::TrajectoryStore co_;
   std::vector<double> ego_cos_, ego_sin_, co_cos_, co_sin_;

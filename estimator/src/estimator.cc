@@ -169,7 +169,7 @@ Estimator::Estimator(const Params& params, const EstimatorOptions& options)
       break;
     case Backend::kCpu:
     case Backend::kAuto:
-      backend_ = std::make_unique<CpuBackend>(options_.threads);
+      backend_ = std::make_unique<CpuBackend>(options_.threads, options_.simd);
       break;
     case Backend::kCuda:
       if (!CudaUsable(&why)) {

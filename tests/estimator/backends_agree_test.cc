@@ -1,5 +1,6 @@
 // Every fast path is checked against the plain reference on the same inputs: the CPU fast path
-// must give the same pair matrix (colliding pairs and first-collision steps), hence the same
+// (scalar, EstimatorOptions::simd false; the SIMD lanes are checked in
+// cpu/sibling_steps_test.cc) must give the same pair matrix (colliding pairs and first-collision steps), hence the same
 // risk outputs, bit for bit, on every scene family (S1, S2, the seeded random family, the
 // discrimination scenes, crowded scenes without collisions), with the default parameters, the
 // paper-literal ones and parameters that move the fast path's step partition (odd sampling
@@ -25,6 +26,7 @@ size_t ExpectSameResult(const Scene& scene, const Params& params, const std::str
   ref_opt.keep_pair_matrix = cpu_opt.keep_pair_matrix = true;
   cpu_opt.backend = Backend::kCpu;
   cpu_opt.threads = 2;
+  cpu_opt.simd = false;  // the scalar fast path; the SIMD one: cpu/sibling_steps_test.cc
   Estimator reference(params, ref_opt), cpu(params, cpu_opt);
   const Result a = reference.Estimate(scene);
   const Result b = cpu.Estimate(scene);

@@ -51,6 +51,11 @@ struct EstimatorOptions {
    *  scene with no object left is answered without generating trajectories. Changes no
    *  probability; the pair matrix then holds only the kept objects' columns. */
   bool reach_shortcut{false};
+  /** cpu backend: simulate sibling ego paths in SIMD lanes and take the poses' cos/sin from
+   *  vector math (cpu/sibling_steps.h). Within 3 ulp of libm per call, so the pair matrix may
+   *  differ from the reference's in grazing contacts; false: the scalar code, bit for bit the
+   *  reference's pair matrix. */
+  bool simd{true};
 };
 
 class EstimatorBackend;

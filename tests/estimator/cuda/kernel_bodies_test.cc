@@ -79,6 +79,7 @@ void ExpectBatchSameAsCpu(const std::vector<Scene>& scenes, const std::string& w
   const cuda::BatchHost& h = e.batch;
   EstimatorOptions opt;
   opt.keep_pair_matrix = true;
+  opt.simd = false;  // the kernel bodies run the scalar core, as the scalar fast path does
   Estimator cpu(params, opt);
   for (size_t p = 0; p < scenes.size(); ++p) {
     const std::string where = what + ", problem " + std::to_string(p);
@@ -179,6 +180,7 @@ TEST(CudaKernelBodies, ProblemsWithCarriagesAreFoldedAndAssessedOnTheHostAsTheCp
   const cuda::BatchHost& h = e.batch;
   EstimatorOptions opt;
   opt.keep_pair_matrix = true;
+  opt.simd = false;  // the kernel bodies run the scalar core, as the scalar fast path does
   Estimator cpu(params, opt);
   for (size_t p = 0; p < scenes.size(); ++p) {
     const Result r = cpu.Estimate(scenes[p]);

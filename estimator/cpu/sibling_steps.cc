@@ -1,0 +1,364 @@
+// Sibling ego paths in SIMD lanes: see sibling_steps.h. Compiled once per vector target by
+// Highway's foreach_target; the entry points at the end dispatch to the best target at run
+// time. Every expression below mirrors one of core::VehicleStep's (same operands, same order),
+// so that lanes agree with the scalar step up to the vector sin/cos/atan. This file is built
+// with -ffp-contract=off: no multiply-add is fused that the scalar code does not fuse.
+#include "cpu/sibling_steps.h"
+
+#include <cmath>
+#include <cstring>
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "cpu/sibling_steps.cc"
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+#include "hwy/highway.h"
+#include "hwy/contrib/math/math-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace criticality::internal {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using core::kMaxLateralSamples;
+
+constexpr size_t kBuf = 16;  // lanes of the widest vector of doubles Highway has, or more
+
+// The per-lane state of the span, structure of arrays (lane l of each array).
+struct Lanes {
+  double x[kBuf], y[kBuf], yaw[kBuf], v[kBuf], beta[kBuf], yaw_rate[kBuf], ax[kBuf], ay[kBuf];
+  double steer[kBuf], travelled[kBuf];
+  // The section each lane tracks now (parabola coefficients and frame).
+  double a[kBuf], b[kBuf], c[kBuf], rot[kBuf], cos_rot[kBuf], sin_rot[kBuf], x_start[kBuf],
+      x_end[kBuf];
+};
+
+void ToLanes(const core::SimulationState& st, size_t l, Lanes* L) {
+  const core::MotionState& s = st.s;
+  L->x[l] = s.x;
+  L->y[l] = s.y;
+  L->yaw[l] = s.yaw;
+  L->v[l] = s.v;
+  L->beta[l] = s.beta;
+  L->yaw_rate[l] = s.yaw_rate;
+  L->ax[l] = s.ax;
+  L->ay[l] = s.ay;
+  L->steer[l] = st.steer;
+  L->travelled[l] = st.travelled;
+}
+
+void FromLanes(const Lanes& L, size_t l, core::SimulationState* st) {
+  core::MotionState& s = st->s;
+  s.x = L.x[l];
+  s.y = L.y[l];
+  s.yaw = L.yaw[l];
+  s.v = L.v[l];
+  s.beta = L.beta[l];
+  s.yaw_rate = L.yaw_rate[l];
+  s.ax = L.ax[l];
+  s.ay = L.ay[l];
+  st->steer = L.steer[l];
+  st->travelled = L.travelled[l];
+}
+
+void SectionToLanes(const core::Parabola& p, size_t l, Lanes* L) {
+  L->a[l] = p.a;
+  L->b[l] = p.b;
+  L->c[l] = p.c;
+  L->rot[l] = p.rot;
+  L->cos_rot[l] = p.cos_rot;
+  L->sin_rot[l] = p.sin_rot;
+  L->x_start[l] = p.x_start;
+  L->x_end[l] = p.x_end;
+}
+
+// Lanes [first, first + count) of the span, count <= Lanes(d); the vector's other lanes repeat
+// lane `first` and are never written back.
+template <class D>
+void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
+  using V = hn::Vec<D>;
+  const core::HypothesisSet& h = *span->h;
+  const core::SimulationConfig& cfg = *span->cfg;
+  const core::ControllerLimits& ctl = cfg.controller;
+  const core::VehicleParams& p = h.vehicle;
+  const size_t N = hn::Lanes(d);
+  const double tau = cfg.tau;
+  const double target = h.profile_target[span->profile];
+  core::StepContext ctx = core::MakeStepContext(h);
+  const double mu_g = ctx.mu_g;
+
+  auto lane_of = [&](size_t l) { return first + static_cast<int>(l < size_t(count) ? l : 0); };
+  Lanes L;
+  for (size_t l = 0; l < N; ++l) ToLanes(span->state[lane_of(l)], l, &L);
+  int instant = span->state[first].instant;
+
+  // Constants of the vehicle (TwoTrackForces) and of the controller (SteeringCommand).
+  const double wheelbase = p.lf_m + p.lr_m;
+  const double weight = p.mass_kg * core::kGravity;
+  const double fz_front = 0.5 * weight * p.lr_m / wheelbase;
+  const double fz_rear = 0.5 * weight * p.lf_m / wheelbase;
+  const double feedforward = h.steer_feedforward ? p.lf_m + p.lr_m : 0.0;
+  const double rate_step = ctl.max_steer_rate_radps * tau;
+  const double half_tau2 = 0.5 * tau * tau;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), two = hn::Set(d, 2.0);
+  const V vtau = hn::Set(d, tau);
+  const V neg_pi = hn::Set(d, -core::kPi), pi = hn::Set(d, core::kPi);
+
+  int section_key = -2;  // (latent, instant) the section lanes were filled for
+  for (int n = span->n_begin; n < span->n_end; ++n) {
+    const double t = n * tau;
+    instant = core::InstantAt(h, instant, t);
+    const bool latent = t < h.steer_latency;
+    const int key = latent ? -1 : instant;
+    if (key != section_key) {
+      section_key = key;
+      for (size_t l = 0; l < N; ++l) {
+        const int lateral = core::SectionOfPath(h, span->path[lane_of(l)], instant);
+        SectionToLanes(latent ? h.reference_path : h.section[instant][lateral], l, &L);
+      }
+    }
+    V v = hn::LoadU(d, L.v);
+    bool scalar = !hn::AllFalse(d, hn::Lt(v, hn::Set(d, h.seam_speed)));
+    if (!scalar) {
+      const V x = hn::LoadU(d, L.x), y = hn::LoadU(d, L.y), yaw = hn::LoadU(d, L.yaw);
+      const V beta = hn::LoadU(d, L.beta), yr = hn::LoadU(d, L.yaw_rate);
+      const V ax = hn::LoadU(d, L.ax), ay = hn::LoadU(d, L.ay);
+      const V cb = hn::Cos(d, beta), sb = hn::Sin(d, beta);
+      const V cy = hn::Cos(d, yaw), sy = hn::Sin(d, yaw);
+      const V course_x = hn::Sub(hn::Mul(cy, cb), hn::Mul(sy, sb));
+      const V course_y = hn::Add(hn::Mul(sy, cb), hn::Mul(cy, sb));
+
+      // SteeringCommand on each lane's section.
+      const V tp = hn::Min(hn::Max(hn::Mul(hn::Set(d, ctl.preview_s_per_mps), v),
+                                   hn::Set(d, ctl.preview_min_s)),
+                           hn::Set(d, ctl.preview_max_s));
+      V xp = hn::Add(x, hn::Mul(hn::Mul(course_x, v), tp));
+      V yp = hn::Add(y, hn::Mul(hn::Mul(course_y, v), tp));
+      const V rot = hn::LoadU(d, L.rot);
+      const V cr = hn::LoadU(d, L.cos_rot), sr = hn::LoadU(d, L.sin_rot);
+      const auto rotated = hn::Ne(rot, zero);
+      const V xr = hn::Add(hn::Mul(cr, xp), hn::Mul(sr, yp));
+      const V yr_ = hn::Add(hn::Mul(hn::Neg(sr), xp), hn::Mul(cr, yp));
+      xp = hn::IfThenElse(rotated, xr, xp);
+      yp = hn::IfThenElse(rotated, yr_, yp);
+      const V a = hn::LoadU(d, L.a), b = hn::LoadU(d, L.b), c = hn::LoadU(d, L.c);
+      const V xs = hn::LoadU(d, L.x_start), xe = hn::LoadU(d, L.x_end);
+      // x clamped to [x_start, x_end] as Parabola::Slope and Eval clamp it.
+      const V xc = hn::IfThenElse(hn::Lt(xp, xs), xs, hn::IfThenElse(hn::Gt(xp, xe), xe, xp));
+      const V two_a = hn::Mul(two, a);
+      const V slope = hn::Add(hn::Mul(two_a, xc), b);
+      const V eval = hn::Add(hn::Add(hn::Mul(hn::Add(hn::Mul(a, xc), b), xc), c),
+                             hn::Mul(slope, hn::Sub(xp, xc)));
+      const V q = hn::Add(one, hn::Mul(slope, slope));
+      const V root_q = hn::Sqrt(q);
+      const V d_path = hn::Div(hn::Sub(eval, yp), root_q);
+      V e_psi = hn::Sub(hn::Add(hn::Atan(d, slope), rot), yaw);
+      if (!hn::AllTrue(d, hn::And(hn::Ge(e_psi, neg_pi), hn::Lt(e_psi, pi)))) {
+        double e[kBuf];
+        hn::StoreU(e_psi, d, e);
+        for (size_t l = 0; l < N; ++l) e[l] = core::WrapAngle(e[l]);
+        e_psi = hn::LoadU(d, e);
+      }
+      // PaperSteeringLawDeg
+      const V g = hn::Abs(hn::Mul(hn::Add(hn::Mul(hn::Set(d, -0.018), v), hn::Set(d, 1.5)), d_path));
+      V cmd = hn::Add(hn::Mul(hn::Add(g, hn::Set(d, 0.5)), d_path),
+                      hn::Mul(hn::Add(hn::Neg(g), hn::Set(d, 9.5)),
+                              hn::Mul(hn::Set(d, 3.8197), e_psi)));
+      cmd = hn::Mul(cmd, hn::Set(d, core::kPi / 180.0));
+      if (feedforward > 0.0) {
+        const auto curved = hn::And(hn::Ge(xp, xs), hn::Le(xp, xe));
+        const V kappa = hn::Div(hn::Mul(two, hn::IfThenElseZero(curved, a)), hn::Mul(q, root_q));
+        cmd = hn::Add(cmd, hn::Atan(d, hn::Mul(hn::Set(d, feedforward), kappa)));
+      }
+      cmd = hn::Min(hn::Max(cmd, hn::Set(d, -ctl.max_steer_rad)), hn::Set(d, ctl.max_steer_rad));
+      const V prev = hn::LoadU(d, L.steer);
+      const V steer = hn::Min(hn::Max(cmd, hn::Sub(prev, hn::Set(d, rate_step))),
+                              hn::Add(prev, hn::Set(d, rate_step)));
+
+      // Longitudinal demand (the same for every lane) and the drive's limit (per lane).
+      const double longitudinal = core::RampedValue(t, h.profile_start, target, h.latency, h.rate);
+      const double factor0 = h.force_profiles ? longitudinal : core::SlipFactor(&ctx, longitudinal);
+      V factor = hn::Set(d, factor0);
+      if (h.power_limited && factor0 > 0.0) {
+        const V power = hn::Div(hn::Set(d, p.power_per_mass_wpkg),
+                                hn::IfThenElse(hn::Gt(v, hn::Set(d, 0.1)), v, hn::Set(d, 0.1)));
+        const V limit = hn::IfThenElse(hn::Lt(power, hn::Set(d, h.drive_traction)), power,
+                                       hn::Set(d, h.drive_traction));
+        const V cap = hn::Div(limit, hn::Set(d, mu_g));
+        factor = hn::IfThenElse(hn::Lt(cap, factor), cap, factor);
+      }
+
+      // TwoTrackForces
+      const V vx_cog = hn::Mul(v, cb), vy_cog = hn::Mul(v, sb);
+      const V cos_steer = hn::Cos(d, steer), sin_steer = hn::Sin(d, steer);
+      V fx = zero, fy = zero, mz = zero;
+      for (int wheel = 0; wheel < 4; ++wheel) {
+        const bool front = wheel < 2;
+        const double xw = front ? p.lf_m : -p.lr_m;
+        const double yw = (wheel % 2 == 0) ? 0.5 * p.track_m : -0.5 * p.track_m;
+        const double fz = front ? fz_front : fz_rear;
+        const double c_wheel = 0.5 * (front ? p.cf_npr : p.cr_npr);
+        const V wx = hn::Sub(vx_cog, hn::Mul(yr, hn::Set(d, yw)));
+        const V wy = hn::Add(vy_cog, hn::Mul(yr, hn::Set(d, xw)));
+        const V delta = front ? steer : zero;
+        const V alpha = hn::Sub(delta, hn::Atan(d, hn::Div(wy, wx)));
+        V fl = hn::Mul(hn::Set(d, p.friction * fz), factor);
+        V fs = hn::Mul(hn::Set(d, c_wheel), alpha);
+        const V limit = hn::Set(d, p.friction * fz);
+        const V norm = hn::Sqrt(hn::Add(hn::Mul(fl, fl), hn::Mul(fs, fs)));
+        const auto over = hn::Gt(norm, limit);
+        const V ratio = hn::Div(limit, norm);
+        fl = hn::IfThenElse(over, hn::Mul(fl, ratio), fl);
+        fs = hn::IfThenElse(over, hn::Mul(fs, ratio), fs);
+        const V cd = front ? cos_steer : one, sd = front ? sin_steer : zero;
+        const V fxv = hn::Sub(hn::Mul(cd, fl), hn::Mul(sd, fs));
+        const V fyv = hn::Add(hn::Mul(sd, fl), hn::Mul(cd, fs));
+        fx = hn::Add(fx, fxv);
+        fy = hn::Add(fy, fyv);
+        mz = hn::Add(mz, hn::Sub(hn::Mul(hn::Set(d, xw), fyv), hn::Mul(hn::Set(d, yw), fxv)));
+      }
+      const V mass = hn::Set(d, p.mass_kg);
+      V v_dot = hn::Div(hn::Add(hn::Mul(fx, cb), hn::Mul(fy, sb)), mass);
+      const V beta_dot =
+          hn::Sub(hn::Div(hn::Add(hn::Mul(hn::Neg(fx), sb), hn::Mul(fy, cb)), hn::Mul(mass, v)),
+                  yr);
+      const V yaw_acc = hn::Div(mz, hn::Set(d, p.yaw_inertia_kgm2));
+
+      // TopSpeedAccel, then NonReversingAccel.
+      const V top = hn::Set(d, h.top_speed);
+      const auto too_fast = hn::And(hn::Gt(v_dot, zero), hn::Gt(hn::Add(v, hn::Mul(v_dot, vtau)), top));
+      V room = hn::Div(hn::Sub(top, v), vtau);
+      room = hn::IfThenElseZero(hn::Gt(room, zero), room);
+      v_dot = hn::IfThenElse(too_fast, room, v_dot);
+      v_dot = hn::IfThenElse(hn::Lt(hn::Add(v, hn::Mul(v_dot, vtau)), zero),
+                             hn::Div(hn::Neg(v), vtau), v_dot);
+
+      // EulerStep
+      const V h2 = hn::Set(d, half_tau2);
+      const V nx = hn::Sub(hn::Add(hn::Add(x, hn::Mul(hn::Mul(course_x, v), vtau)),
+                                   hn::Mul(hn::Mul(cy, ax), h2)),
+                           hn::Mul(hn::Mul(sy, ay), h2));
+      const V ny = hn::Add(hn::Add(hn::Add(y, hn::Mul(hn::Mul(course_y, v), vtau)),
+                                   hn::Mul(hn::Mul(sy, ax), h2)),
+                           hn::Mul(hn::Mul(cy, ay), h2));
+      const V turn = hn::Mul(v, hn::Add(beta_dot, yr));
+      const V nax = hn::Sub(hn::Mul(cb, v_dot), hn::Mul(sb, turn));
+      const V nay = hn::Add(hn::Mul(sb, v_dot), hn::Mul(cb, turn));
+      const V nyaw = hn::Add(hn::Add(yaw, hn::Mul(yr, vtau)), hn::Mul(yaw_acc, h2));
+      const V nyr = hn::Add(yr, hn::Mul(yaw_acc, vtau));
+      V nv = hn::Add(v, hn::Mul(v_dot, vtau));
+      const V nbeta = hn::Add(beta, hn::Mul(beta_dot, vtau));
+      nv = hn::IfThenElse(hn::Lt(nv, zero), zero, nv);  // rounding guard
+      const V travelled = hn::Add(hn::LoadU(d, L.travelled), hn::Mul(nv, vtau));
+      hn::StoreU(nx, d, L.x);
+      hn::StoreU(ny, d, L.y);
+      hn::StoreU(nyaw, d, L.yaw);
+      hn::StoreU(nv, d, L.v);
+      hn::StoreU(nbeta, d, L.beta);
+      hn::StoreU(nyr, d, L.yaw_rate);
+      hn::StoreU(nax, d, L.ax);
+      hn::StoreU(nay, d, L.ay);
+      hn::StoreU(steer, d, L.steer);
+      hn::StoreU(travelled, d, L.travelled);
+
+      // StorePose
+      V px = nx, py = ny;
+      if (h.position_lead > 0.0) {
+        const V shift = hn::Mul(hn::Sub(nv, hn::Set(d, h.v0)), hn::Set(d, h.position_lead));
+        px = hn::Add(px, hn::Mul(course_x, shift));
+        py = hn::Add(py, hn::Mul(course_y, shift));
+      }
+      const V c0 = hn::Set(d, ctx.c0), s0 = hn::Set(d, ctx.s0);
+      V wx = hn::Sub(hn::Add(hn::Set(d, h.X_WL.x), hn::Mul(c0, px)), hn::Mul(s0, py));
+      V wy = hn::Add(hn::Add(hn::Set(d, h.X_WL.y), hn::Mul(s0, px)), hn::Mul(c0, py));
+      const auto gone = hn::Gt(travelled, hn::Set(d, h.leave_distance));
+      wx = hn::IfThenElse(gone, hn::Set(d, core::GoneX(h)), wx);
+      wy = hn::IfThenElseZero(hn::Not(gone), wy);
+      const V wyaw = hn::Add(hn::Set(d, h.X_WL.yaw), nyaw);
+      double bx[kBuf], by[kBuf], byaw[kBuf];
+      hn::StoreU(wx, d, bx);
+      hn::StoreU(wy, d, by);
+      hn::StoreU(wyaw, d, byaw);
+      for (int l = 0; l < count; ++l) {
+        span->x[first + l][n] = bx[l];
+        span->y[first + l][n] = by[l];
+        span->yaw[first + l][n] = byaw[l];
+      }
+    } else {  // some lane drives the kinematic model: the scalar step, lane by lane
+      for (int l = 0; l < count; ++l) {
+        core::SimulationState st = span->state[first + l];
+        FromLanes(L, l, &st);
+        st.instant = instant;
+        const int lane = first + l;
+        core::VehicleStep(h, cfg, span->profile, span->path[lane], n, &ctx, &st,
+                          &span->x[lane][n], &span->y[lane][n], &span->yaw[lane][n]);
+        ToLanes(st, l, &L);
+      }
+      for (size_t l = count; l < N; ++l) {  // padding lanes repeat lane 0 of the chunk
+        core::SimulationState st;
+        FromLanes(L, 0, &st);
+        ToLanes(st, l, &L);
+      }
+    }
+  }
+  for (int l = 0; l < count; ++l) {
+    FromLanes(L, l, &span->state[first + l]);
+    span->state[first + l].instant = instant;
+  }
+}
+
+void SiblingStepsImpl(SiblingSpan* span) {
+  const hn::ScalableTag<double> d;
+  const int N = static_cast<int>(hn::Lanes(d));
+  for (int first = 0; first < span->lanes; first += N) {
+    SimulateChunk(d, span, first, span->lanes - first < N ? span->lanes - first : N);
+  }
+}
+
+void CosSinImpl(const double* a, size_t n, double* c, double* s) {
+  const hn::ScalableTag<double> d;
+  const size_t N = hn::Lanes(d);
+  size_t i = 0;
+  for (; i + N <= n; i += N) {
+    const auto v = hn::LoadU(d, a + i);
+    hn::StoreU(hn::Cos(d, v), d, c + i);
+    hn::StoreU(hn::Sin(d, v), d, s + i);
+  }
+  if (i < n) {  // the tail through the same vector code
+    double va[kBuf] = {}, vc[kBuf], vs[kBuf];
+    std::memcpy(va, a + i, (n - i) * sizeof(double));
+    const auto v = hn::LoadU(d, va);
+    hn::StoreU(hn::Cos(d, v), d, vc);
+    hn::StoreU(hn::Sin(d, v), d, vs);
+    std::memcpy(c + i, vc, (n - i) * sizeof(double));
+    std::memcpy(s + i, vs, (n - i) * sizeof(double));
+  }
+}
+
+const char* TargetImpl() { return hwy::TargetName(HWY_TARGET); }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace criticality::internal
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace criticality::internal {
+
+HWY_EXPORT(SiblingStepsImpl);
+HWY_EXPORT(CosSinImpl);
+HWY_EXPORT(TargetImpl);
+
+bool SiblingStepsApply(const core::HypothesisSet& h, const core::SimulationConfig& cfg) {
+  return h.model == core::MotionModelKind::kTwoTrack && !h.on_track && cfg.controller.feedback &&
+         h.n_lateral <= core::kMaxLateralSamples;
+}
+
+void SimulateSiblingSteps(SiblingSpan* span) { HWY_DYNAMIC_DISPATCH(SiblingStepsImpl)(span); }
+
+void CosSin(const double* a, size_t n, double* c, double* s) {
+  HWY_DYNAMIC_DISPATCH(CosSinImpl)(a, n, c, s);
+}
+
+const char* SiblingStepsTarget() { return HWY_DYNAMIC_DISPATCH(TargetImpl)(); }
+
+}  // namespace criticality::internal
+#endif  // HWY_ONCE

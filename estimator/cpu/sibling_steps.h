@@ -1,0 +1,49 @@
+#pragma once
+// Sibling ego paths in SIMD lanes (issue 23). The children of a node of the ego's section tree
+// start from the same state and differ only in the path section they track over the node's
+// span: they are simulated together, one per lane of the widest vector unit the CPU has
+// (Highway's runtime dispatch: AVX-512, AVX2, SSE4, NEON, ... from one source), through the
+// same steps as core::VehicleStep (controller, two-track model, Euler step, pose), with the
+// same arithmetic in the same order; only sin, cos and atan come from Highway's vector math
+// (within 3 ulp of libm) instead of libm. A step where some lane is below the seam speed (the
+// kinematic model) or an angle needs wrapping runs core::VehicleStep lane by lane.
+//
+// CosSin is the same vector math over an array (the poses' cos/sin for the box tests).
+#include <cstddef>
+
+#include "core/hypothesis_set.h"
+#include "core/trajectory_generation.h"
+
+namespace criticality::internal {
+
+/** Up to kMaxLateralSamples paths of one vehicle hypothesis set and profile, over steps
+ *  [n_begin, n_end). Lane l starts from state[l] (left there at the end) and writes the pose
+ *  of step n to x[l][n], y[l][n], yaw[l][n]. */
+struct SiblingSpan {
+  const core::HypothesisSet* h{nullptr};
+  const core::SimulationConfig* cfg{nullptr};
+  int profile{0};
+  int n_begin{0}, n_end{0};
+  int lanes{0};
+  int path[core::kMaxLateralSamples]{};
+  core::SimulationState state[core::kMaxLateralSamples];
+  double* x[core::kMaxLateralSamples]{};
+  double* y[core::kMaxLateralSamples]{};
+  double* yaw[core::kMaxLateralSamples]{};
+};
+
+/** Whether SimulateSiblingSteps covers this set: a two-track vehicle off any track with the
+ *  lateral controller on (the ego's hypotheses); else simulate each path with
+ *  core::SimulateVehicleSteps. */
+bool SiblingStepsApply(const core::HypothesisSet& h, const core::SimulationConfig& cfg);
+
+/** Simulates the span's lanes together (requires SiblingStepsApply). */
+void SimulateSiblingSteps(SiblingSpan* span);
+
+/** c[i] = cos(a[i]), s[i] = sin(a[i]) for i < n, with the vector math of SimulateSiblingSteps. */
+void CosSin(const double* a, size_t n, double* c, double* s);
+
+/** The vector target the dispatch chose on this CPU (e.g. "AVX3", "AVX2"), for reports. */
+const char* SiblingStepsTarget();
+
+}  // namespace criticality::internal
