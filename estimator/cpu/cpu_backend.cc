@@ -145,22 +145,18 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
                                    span->x[c], span->y[c], span->yaw[c]);
       }
     }
+    // Collision recognition reads a span's cos/sin and block bounds on the node's first path
+    // only (it walks the same tree): only the poses are copied, for EgoTrajectories().
     const size_t n_span = n1 - n0;
-    const size_t qspan = phase_block_[k + 1] - phase_block_[k];
     for (int c = 0; c < L; ++c) {
       const int first = profile * ego.n_paths + (parent * L + c) * width;
       const size_t at = ego_.Offset(first);
       FinishSpan(ego_, &ego_cos_, &ego_sin_, &ego_bounds_, first, n0, n1, phase_block_[k],
                  phase_block_[k + 1]);
-      const size_t qfrom = static_cast<size_t>(first) * blocks + phase_block_[k];
       for (int p = 1; p < width; ++p) {
         const size_t to = ego_.Offset(first + p) + n0, from = at + n0;
-        for (std::vector<double>* v : {&ego_.x, &ego_.y, &ego_.yaw, &ego_cos_, &ego_sin_}) {
+        for (std::vector<double>* v : {&ego_.x, &ego_.y, &ego_.yaw}) {
           std::memcpy(v->data() + to, v->data() + from, n_span * sizeof(double));
-        }
-        const size_t qto = static_cast<size_t>(first + p) * blocks + phase_block_[k];
-        for (std::vector<double>* v : {&ego_bounds_.cx, &ego_bounds_.cy, &ego_bounds_.r}) {
-          std::memcpy(v->data() + qto, v->data() + qfrom, qspan * sizeof(double));
         }
       }
     }
@@ -186,16 +182,42 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
     for (int task = begin; task < end; ++task)
       subtree(subtree, task / L, 0, task % L, first_state[task]);
   });
-  // Collision objects: no shared prefixes (each keeps one lateral sample throughout).
-  internal::ParallelFor(pb.CoTrajectories(), threads_, [&](int begin, int end) {
-    for (int j = begin; j < end; ++j) {
-      const int o = pb.co_object_of[j];
+  // Collision objects: no shared prefixes (each keeps one lateral sample throughout); the
+  // paths of one (set, profile) in SIMD lanes where they apply, else one by one.
+  std::vector<std::pair<int, int>> co_tasks;  // (set, profile)
+  for (size_t o = 0; o < pb.cos.size(); ++o)
+    for (int profile = 0; profile < pb.cos[o].n_profiles; ++profile)
+      co_tasks.emplace_back(static_cast<int>(o), profile);
+  internal::ParallelFor(static_cast<int>(co_tasks.size()), threads_, [&](int begin, int end) {
+    for (int task = begin; task < end; ++task) {
+      const auto [o, profile] = co_tasks[task];
       const core::HypothesisSet& h = pb.cos[o];
-      const int t = j - pb.co_offset[o];
-      const size_t at = co_.Offset(j);
-      core::SimulateHypothesis(h, pb.sim, t / h.n_paths, t % h.n_paths, &co_.x[at], &co_.y[at],
-                               &co_.yaw[at]);
-      FinishSpan(co_, &co_cos_, &co_sin_, &co_bounds_, j, 0, steps, 0, blocks);
+      const int j0 = pb.co_offset[o] + profile * h.n_paths;
+      if (simd_ && internal::SiblingStepsApply(h, pb.sim)) {
+        internal::SiblingSpan span;
+        span.h = &h;
+        span.cfg = &pb.sim;
+        span.profile = profile;
+        span.n_begin = 0;
+        span.n_end = steps;
+        span.lanes = h.n_paths;
+        for (int path = 0; path < h.n_paths; ++path) {
+          const size_t at = co_.Offset(j0 + path);
+          span.path[path] = path;
+          span.state[path] = core::InitialSimulationState(h, pb.sim);
+          span.x[path] = &co_.x[at];
+          span.y[path] = &co_.y[at];
+          span.yaw[path] = &co_.yaw[at];
+        }
+        internal::SimulateSiblingSteps(&span);
+      } else {
+        for (int path = 0; path < h.n_paths; ++path) {
+          const size_t at = co_.Offset(j0 + path);
+          core::SimulateHypothesis(h, pb.sim, profile, path, &co_.x[at], &co_.y[at], &co_.yaw[at]);
+        }
+      }
+      for (int path = 0; path < h.n_paths; ++path)
+        FinishSpan(co_, &co_cos_, &co_sin_, &co_bounds_, j0 + path, 0, steps, 0, blocks);
     }
   });
 

@@ -71,6 +71,128 @@ void SectionToLanes(const core::Parabola& p, size_t l, Lanes* L) {
   L->x_end[l] = p.x_end;
 }
 
+// What a model returns for one step (core::StateDerivative), per lane.
+template <class V>
+struct Derivative {
+  V v_dot, beta_dot, yaw_acc;
+};
+
+// core::DriveAccelLimit per lane.
+template <class D, class V = hn::Vec<D>>
+V DriveLimit(D d, const core::HypothesisSet& h, V v) {
+  const V power = hn::Div(hn::Set(d, h.vehicle.power_per_mass_wpkg),
+                          hn::IfThenElse(hn::Gt(v, hn::Set(d, 0.1)), v, hn::Set(d, 0.1)));
+  const V traction = hn::Set(d, h.drive_traction);
+  return hn::IfThenElse(hn::Lt(power, traction), power, traction);
+}
+
+// core::TwoTrackDerivative (TwoTrackForces inlined) per lane.
+template <class D, class V = hn::Vec<D>>
+Derivative<V> TwoTrack(D d, const core::VehicleParams& p, V v, V yr, V cb, V sb, V steer,
+                       V factor) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  const double wheelbase = p.lf_m + p.lr_m;
+  const double weight = p.mass_kg * core::kGravity;
+  const double fz_front = 0.5 * weight * p.lr_m / wheelbase;
+  const double fz_rear = 0.5 * weight * p.lf_m / wheelbase;
+  const V vx_cog = hn::Mul(v, cb), vy_cog = hn::Mul(v, sb);
+  const V cos_steer = hn::Cos(d, steer), sin_steer = hn::Sin(d, steer);
+  V fx = zero, fy = zero, mz = zero;
+  for (int wheel = 0; wheel < 4; ++wheel) {
+    const bool front = wheel < 2;
+    const double xw = front ? p.lf_m : -p.lr_m;
+    const double yw = (wheel % 2 == 0) ? 0.5 * p.track_m : -0.5 * p.track_m;
+    const double fz = front ? fz_front : fz_rear;
+    const double c_wheel = 0.5 * (front ? p.cf_npr : p.cr_npr);
+    const V wx = hn::Sub(vx_cog, hn::Mul(yr, hn::Set(d, yw)));
+    const V wy = hn::Add(vy_cog, hn::Mul(yr, hn::Set(d, xw)));
+    const V delta = front ? steer : zero;
+    const V alpha = hn::Sub(delta, hn::Atan(d, hn::Div(wy, wx)));
+    V fl = hn::Mul(hn::Set(d, p.friction * fz), factor);
+    V fs = hn::Mul(hn::Set(d, c_wheel), alpha);
+    const V limit = hn::Set(d, p.friction * fz);
+    const V norm = hn::Sqrt(hn::Add(hn::Mul(fl, fl), hn::Mul(fs, fs)));
+    const auto over = hn::Gt(norm, limit);
+    const V ratio = hn::Div(limit, norm);
+    fl = hn::IfThenElse(over, hn::Mul(fl, ratio), fl);
+    fs = hn::IfThenElse(over, hn::Mul(fs, ratio), fs);
+    const V cd = front ? cos_steer : one, sd = front ? sin_steer : zero;
+    const V fxv = hn::Sub(hn::Mul(cd, fl), hn::Mul(sd, fs));
+    const V fyv = hn::Add(hn::Mul(sd, fl), hn::Mul(cd, fs));
+    fx = hn::Add(fx, fxv);
+    fy = hn::Add(fy, fyv);
+    mz = hn::Add(mz, hn::Sub(hn::Mul(hn::Set(d, xw), fyv), hn::Mul(hn::Set(d, yw), fxv)));
+  }
+  const V mass = hn::Set(d, p.mass_kg);
+  Derivative<V> out;
+  out.v_dot = hn::Div(hn::Add(hn::Mul(fx, cb), hn::Mul(fy, sb)), mass);
+  out.beta_dot =
+      hn::Sub(hn::Div(hn::Add(hn::Mul(hn::Neg(fx), sb), hn::Mul(fy, cb)), hn::Mul(mass, v)), yr);
+  out.yaw_acc = hn::Div(mz, hn::Set(d, p.yaw_inertia_kgm2));
+  return out;
+}
+
+// core::Clamp per lane.
+template <class V>
+V ClampV(V x, V lo, V hi) {
+  return hn::Min(hn::Max(x, lo), hi);
+}
+
+// core::OneTrackDerivative per lane.
+template <class D, class V = hn::Vec<D>>
+Derivative<V> OneTrack(D d, const core::VehicleParams& p, V v, V beta, V yr, V steer, V v_dot) {
+  const double m = p.mass_kg, iz = p.yaw_inertia_kgm2;
+  const double cf = p.cf_npr, cr = p.cr_npr, lf = p.lf_m, lr = p.lr_m;
+  const V mv = hn::Mul(hn::Set(d, m), v);
+  Derivative<V> out;
+  if (p.friction_limited) {
+    const V zero = hn::Zero(d);
+    const double mu_g = p.friction * core::kGravity;
+    const V ax = ClampV(v_dot, hn::Set(d, -mu_g), hn::Set(d, mu_g));
+    const V r = hn::Div(ax, hn::Set(d, mu_g));
+    const V left = hn::Sub(hn::Set(d, 1.0), hn::Mul(r, r));
+    const V side = hn::Mul(hn::Set(d, p.friction),
+                           hn::Sqrt(hn::IfThenElse(hn::Lt(zero, left), left, zero)));
+    const double wheelbase = lf + lr;
+    const double weight_per_l = m * core::kGravity / wheelbase;
+    const V f_max = hn::Mul(hn::Mul(side, hn::Set(d, weight_per_l)), hn::Set(d, lr));
+    const V r_max = hn::Mul(hn::Mul(side, hn::Set(d, weight_per_l)), hn::Set(d, lf));
+    const double gradient = core::Max(0.0, m * (cr * lr - cf * lf) / (cf * cr * wheelbase));
+    const V vv = hn::Mul(v, v);
+    const V steer_max = hn::Div(
+        hn::Mul(hn::Mul(hn::Add(hn::Set(d, wheelbase), hn::Mul(hn::Mul(hn::Set(d, gradient), v), v)),
+                        side),
+                hn::Set(d, core::kGravity)),
+        vv);
+    const V st = ClampV(steer, hn::Neg(steer_max), steer_max);
+    const V fyf = ClampV(
+        hn::Mul(hn::Set(d, cf),
+                hn::Sub(hn::Sub(st, beta), hn::Div(hn::Mul(hn::Set(d, lf), yr), v))),
+        hn::Neg(f_max), f_max);
+    const V fyr = ClampV(
+        hn::Mul(hn::Set(d, cr), hn::Add(hn::Neg(beta), hn::Div(hn::Mul(hn::Set(d, lr), yr), v))),
+        hn::Neg(r_max), r_max);
+    out.v_dot = ax;
+    out.beta_dot = hn::Sub(hn::Div(hn::Add(fyf, fyr), mv), yr);
+    out.yaw_acc = hn::Div(hn::Sub(hn::Mul(hn::Set(d, lf), fyf), hn::Mul(hn::Set(d, lr), fyr)),
+                          hn::Set(d, iz));
+    return out;
+  }
+  out.v_dot = v_dot;
+  const V b1 = hn::Mul(hn::Div(hn::Set(d, -(cf + cr)), mv), beta);
+  const V b2 = hn::Mul(hn::Sub(hn::Div(hn::Set(d, cr * lr - cf * lf), hn::Mul(mv, v)),
+                               hn::Set(d, 1.0)),
+                       yr);
+  const V b3 = hn::Mul(hn::Div(hn::Set(d, cf), mv), steer);
+  out.beta_dot = hn::Add(hn::Add(b1, b2), b3);
+  const V y1 = hn::Mul(hn::Set(d, (cr * lr - cf * lf) / iz), beta);
+  const V y2 = hn::Mul(hn::Div(hn::Set(d, cf * lf * lf + cr * lr * lr), hn::Mul(hn::Set(d, iz), v)),
+                       yr);
+  const V y3 = hn::Mul(hn::Set(d, cf * lf / iz), steer);
+  out.yaw_acc = hn::Add(hn::Sub(y1, y2), y3);
+  return out;
+}
+
 // Lanes [first, first + count) of the span, count <= Lanes(d); the vector's other lanes repeat
 // lane `first` and are never written back.
 template <class D>
@@ -91,11 +213,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
   for (size_t l = 0; l < N; ++l) ToLanes(span->state[lane_of(l)], l, &L);
   int instant = span->state[first].instant;
 
-  // Constants of the vehicle (TwoTrackForces) and of the controller (SteeringCommand).
-  const double wheelbase = p.lf_m + p.lr_m;
-  const double weight = p.mass_kg * core::kGravity;
-  const double fz_front = 0.5 * weight * p.lr_m / wheelbase;
-  const double fz_rear = 0.5 * weight * p.lf_m / wheelbase;
+  // Constants of the controller (SteeringCommand).
   const double feedforward = h.steer_feedforward ? p.lf_m + p.lr_m : 0.0;
   const double rate_step = ctl.max_steer_rate_radps * tau;
   const double half_tau2 = 0.5 * tau * tau;
@@ -174,54 +292,29 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       const V steer = hn::Min(hn::Max(cmd, hn::Sub(prev, hn::Set(d, rate_step))),
                               hn::Add(prev, hn::Set(d, rate_step)));
 
-      // Longitudinal demand (the same for every lane) and the drive's limit (per lane).
+      // Longitudinal demand (the same for every lane), the drive's limit (per lane) and the
+      // model's derivative.
       const double longitudinal = core::RampedValue(t, h.profile_start, target, h.latency, h.rate);
-      const double factor0 = h.force_profiles ? longitudinal : core::SlipFactor(&ctx, longitudinal);
-      V factor = hn::Set(d, factor0);
-      if (h.power_limited && factor0 > 0.0) {
-        const V power = hn::Div(hn::Set(d, p.power_per_mass_wpkg),
-                                hn::IfThenElse(hn::Gt(v, hn::Set(d, 0.1)), v, hn::Set(d, 0.1)));
-        const V limit = hn::IfThenElse(hn::Lt(power, hn::Set(d, h.drive_traction)), power,
-                                       hn::Set(d, h.drive_traction));
-        const V cap = hn::Div(limit, hn::Set(d, mu_g));
-        factor = hn::IfThenElse(hn::Lt(cap, factor), cap, factor);
+      Derivative<V> der;
+      if (h.model == core::MotionModelKind::kTwoTrack) {
+        const double factor0 =
+            h.force_profiles ? longitudinal : core::SlipFactor(&ctx, longitudinal);
+        V factor = hn::Set(d, factor0);
+        if (h.power_limited && factor0 > 0.0) {
+          const V cap = hn::Div(DriveLimit(d, h, v), hn::Set(d, mu_g));
+          factor = hn::IfThenElse(hn::Lt(cap, factor), cap, factor);
+        }
+        der = TwoTrack(d, p, v, yr, cb, sb, steer, factor);
+      } else {
+        V lon = hn::Set(d, longitudinal);
+        if (h.power_limited && longitudinal > 0.0) {
+          const V cap = DriveLimit(d, h, v);
+          lon = hn::IfThenElse(hn::Lt(cap, lon), cap, lon);
+        }
+        der = OneTrack(d, p, v, hn::LoadU(d, L.beta), yr, steer, lon);
       }
-
-      // TwoTrackForces
-      const V vx_cog = hn::Mul(v, cb), vy_cog = hn::Mul(v, sb);
-      const V cos_steer = hn::Cos(d, steer), sin_steer = hn::Sin(d, steer);
-      V fx = zero, fy = zero, mz = zero;
-      for (int wheel = 0; wheel < 4; ++wheel) {
-        const bool front = wheel < 2;
-        const double xw = front ? p.lf_m : -p.lr_m;
-        const double yw = (wheel % 2 == 0) ? 0.5 * p.track_m : -0.5 * p.track_m;
-        const double fz = front ? fz_front : fz_rear;
-        const double c_wheel = 0.5 * (front ? p.cf_npr : p.cr_npr);
-        const V wx = hn::Sub(vx_cog, hn::Mul(yr, hn::Set(d, yw)));
-        const V wy = hn::Add(vy_cog, hn::Mul(yr, hn::Set(d, xw)));
-        const V delta = front ? steer : zero;
-        const V alpha = hn::Sub(delta, hn::Atan(d, hn::Div(wy, wx)));
-        V fl = hn::Mul(hn::Set(d, p.friction * fz), factor);
-        V fs = hn::Mul(hn::Set(d, c_wheel), alpha);
-        const V limit = hn::Set(d, p.friction * fz);
-        const V norm = hn::Sqrt(hn::Add(hn::Mul(fl, fl), hn::Mul(fs, fs)));
-        const auto over = hn::Gt(norm, limit);
-        const V ratio = hn::Div(limit, norm);
-        fl = hn::IfThenElse(over, hn::Mul(fl, ratio), fl);
-        fs = hn::IfThenElse(over, hn::Mul(fs, ratio), fs);
-        const V cd = front ? cos_steer : one, sd = front ? sin_steer : zero;
-        const V fxv = hn::Sub(hn::Mul(cd, fl), hn::Mul(sd, fs));
-        const V fyv = hn::Add(hn::Mul(sd, fl), hn::Mul(cd, fs));
-        fx = hn::Add(fx, fxv);
-        fy = hn::Add(fy, fyv);
-        mz = hn::Add(mz, hn::Sub(hn::Mul(hn::Set(d, xw), fyv), hn::Mul(hn::Set(d, yw), fxv)));
-      }
-      const V mass = hn::Set(d, p.mass_kg);
-      V v_dot = hn::Div(hn::Add(hn::Mul(fx, cb), hn::Mul(fy, sb)), mass);
-      const V beta_dot =
-          hn::Sub(hn::Div(hn::Add(hn::Mul(hn::Neg(fx), sb), hn::Mul(fy, cb)), hn::Mul(mass, v)),
-                  yr);
-      const V yaw_acc = hn::Div(mz, hn::Set(d, p.yaw_inertia_kgm2));
+      V v_dot = der.v_dot;
+      const V beta_dot = der.beta_dot, yaw_acc = der.yaw_acc;
 
       // TopSpeedAccel, then NonReversingAccel.
       const V top = hn::Set(d, h.top_speed);
@@ -348,8 +441,9 @@ HWY_EXPORT(CosSinImpl);
 HWY_EXPORT(TargetImpl);
 
 bool SiblingStepsApply(const core::HypothesisSet& h, const core::SimulationConfig& cfg) {
-  return h.model == core::MotionModelKind::kTwoTrack && !h.on_track && cfg.controller.feedback &&
-         h.n_lateral <= core::kMaxLateralSamples;
+  return h.model != core::MotionModelKind::kPedestrian && !h.on_track && cfg.controller.feedback &&
+         h.n_lateral <= core::kMaxLateralSamples &&
+         (h.combine_sections || h.n_paths <= core::kMaxLateralSamples);
 }
 
 void SimulateSiblingSteps(SiblingSpan* span) { HWY_DYNAMIC_DISPATCH(SiblingStepsImpl)(span); }

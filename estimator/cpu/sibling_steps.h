@@ -1,12 +1,14 @@
 #pragma once
-// Sibling ego paths in SIMD lanes (issue 23). The children of a node of the ego's section tree
+// Sibling paths in SIMD lanes (issue 23). The children of a node of the ego's section tree
 // start from the same state and differ only in the path section they track over the node's
-// span: they are simulated together, one per lane of the widest vector unit the CPU has
-// (Highway's runtime dispatch: AVX-512, AVX2, SSE4, NEON, ... from one source), through the
-// same steps as core::VehicleStep (controller, two-track model, Euler step, pose), with the
-// same arithmetic in the same order; only sin, cos and atan come from Highway's vector math
-// (within 3 ulp of libm) instead of libm. A step where some lane is below the seam speed (the
-// kinematic model) or an angle needs wrapping runs core::VehicleStep lane by lane.
+// span; the paths of another vehicle's profile differ only in their lateral sample. Either
+// group is simulated together, one path per lane of the widest vector unit the CPU has
+// (Highway's run-time dispatch: AVX-512, AVX2, SSE4, NEON, ... from one source), through the
+// same steps as core::VehicleStep (controller, two-track or one-track model, Euler step,
+// pose), with the same arithmetic in the same order; only sin, cos and atan come from
+// Highway's vector math (within 3 ulp of libm) instead of libm. A step where some lane is
+// below the seam speed (the kinematic model) runs core::VehicleStep lane by lane; an angle
+// that needs wrapping is wrapped lane by lane by core::WrapAngle.
 //
 // CosSin is the same vector math over an array (the poses' cos/sin for the box tests).
 #include <cstddef>
@@ -32,9 +34,9 @@ struct SiblingSpan {
   double* yaw[core::kMaxLateralSamples]{};
 };
 
-/** Whether SimulateSiblingSteps covers this set: a two-track vehicle off any track with the
- *  lateral controller on (the ego's hypotheses); else simulate each path with
- *  core::SimulateVehicleSteps. */
+/** Whether SimulateSiblingSteps covers this set: a two-track or one-track vehicle off any
+ *  track with the lateral controller on; else simulate each path with
+ *  core::SimulateVehicleSteps (pedestrians: core::SimulateHypothesis). */
 bool SiblingStepsApply(const core::HypothesisSet& h, const core::SimulationConfig& cfg);
 
 /** Simulates the span's lanes together (requires SiblingStepsApply). */

@@ -29,8 +29,8 @@ using internal::Problem;
 
 // Max |difference| of poses between SimulateSiblingSteps and SimulateVehicleSteps for the given
 // paths of every profile over the whole horizon, from the initial state.
-double MaxPoseDifference(const Problem& pb, const std::vector<int>& paths) {
-  const core::HypothesisSet& h = pb.ego;
+double MaxPoseDifference(const Problem& pb, const core::HypothesisSet& h,
+                         const std::vector<int>& paths) {
   const int steps = pb.sim.n_steps;
   double worst = 0.0;
   for (int profile = 0; profile < h.n_profiles; ++profile) {
@@ -76,7 +76,13 @@ TEST(SiblingSteps, AppliesToTheEgosTwoTrackHypotheses) {
   const Problem pb = BuildProblem(bench::PaperSceneS1(), Params{});
   EXPECT_TRUE(internal::SiblingStepsApply(pb.ego, pb.sim));
   ASSERT_FALSE(pb.cos.empty());
-  EXPECT_FALSE(internal::SiblingStepsApply(pb.cos[0], pb.sim));  // one-track: scalar
+  EXPECT_EQ(pb.cos[0].model, core::MotionModelKind::kOneTrack);
+  EXPECT_TRUE(internal::SiblingStepsApply(pb.cos[0], pb.sim));
+  Scene with_pedestrian = testing::RandomScene(2, 0, 2, false);
+  const Problem pp = BuildProblem(with_pedestrian, Params{});
+  ASSERT_FALSE(pp.cos.empty());
+  EXPECT_EQ(pp.cos[0].model, core::MotionModelKind::kPedestrian);
+  EXPECT_FALSE(internal::SiblingStepsApply(pp.cos[0], pp.sim));
   Params open_loop;
   open_loop.lateral_controller = false;
   const Problem ol = BuildProblem(bench::PaperSceneS1(), open_loop);
@@ -92,18 +98,29 @@ TEST(SiblingSteps, LanesFollowTheScalarStepWithinRounding) {
   slow.ego.state.speed_mps = 2.6;
   scenes.push_back(slow);
   for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) scenes.push_back(d.scene);
-  int checked = 0;
+  int checked = 0, checked_others = 0;
+  for (const Params& params : {Params{}, ParamsPreset("paper-literal")}) {
   for (const Scene& s : scenes) {
-    const Problem pb = BuildProblem(s, Params{});
+    const Problem pb = BuildProblem(s, params);
     if (!internal::SiblingStepsApply(pb.ego, pb.sim)) continue;
     // 1, 3, 7 (one AVX-512 register, two AVX2 ones) and 11 lanes (more than one register).
     for (int count : {1, 3, 7, 11}) {
-      EXPECT_LT(MaxPoseDifference(pb, SpreadPaths(pb.ego, count)), 1e-9)
+      EXPECT_LT(MaxPoseDifference(pb, pb.ego, SpreadPaths(pb.ego, count)), 1e-9)
           << s.ego.id << " " << count << " lanes";
     }
     ++checked;
+    // The other vehicles: every path of each profile (one-track, friction-limited by default).
+    for (const core::HypothesisSet& h : pb.cos) {
+      if (!internal::SiblingStepsApply(h, pb.sim)) continue;
+      std::vector<int> paths;
+      for (int l = 0; l < h.n_paths; ++l) paths.push_back(l);
+      EXPECT_LT(MaxPoseDifference(pb, h, paths), 1e-9) << s.ego.id << " other vehicle";
+      ++checked_others;
+    }
   }
-  EXPECT_GE(checked, 20);
+  }
+  EXPECT_GE(checked, 40);
+  EXPECT_GE(checked_others, 100);
 }
 
 TEST(SiblingSteps, CosSinMatchesLibm) {
