@@ -234,9 +234,8 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
         SectionToLanes(latent ? h.reference_path : h.section[instant][lateral], l, &L);
       }
     }
-    V v = hn::LoadU(d, L.v);
-    bool scalar = !hn::AllFalse(d, hn::Lt(v, hn::Set(d, h.seam_speed)));
-    if (!scalar) {
+    const V v = hn::LoadU(d, L.v);
+    {
       const V x = hn::LoadU(d, L.x), y = hn::LoadU(d, L.y), yaw = hn::LoadU(d, L.yaw);
       const V beta = hn::LoadU(d, L.beta), yr = hn::LoadU(d, L.yaw_rate);
       const V ax = hn::LoadU(d, L.ax), ay = hn::LoadU(d, L.ay);
@@ -296,6 +295,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       // model's derivative.
       const double longitudinal = core::RampedValue(t, h.profile_start, target, h.latency, h.rate);
       Derivative<V> der;
+      V kin_factor = zero;  // the demand the kinematic model gets (a slip factor or m/s^2)
       if (h.model == core::MotionModelKind::kTwoTrack) {
         const double factor0 =
             h.force_profiles ? longitudinal : core::SlipFactor(&ctx, longitudinal);
@@ -305,16 +305,50 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
           factor = hn::IfThenElse(hn::Lt(cap, factor), cap, factor);
         }
         der = TwoTrack(d, p, v, yr, cb, sb, steer, factor);
+        kin_factor = factor;
       } else {
         V lon = hn::Set(d, longitudinal);
         if (h.power_limited && longitudinal > 0.0) {
           const V cap = DriveLimit(d, h, v);
           lon = hn::IfThenElse(hn::Lt(cap, lon), cap, lon);
         }
-        der = OneTrack(d, p, v, hn::LoadU(d, L.beta), yr, steer, lon);
+        der = OneTrack(d, p, v, beta, yr, steer, lon);
+        kin_factor = lon;
       }
-      V v_dot = der.v_dot;
-      const V beta_dot = der.beta_dot, yaw_acc = der.yaw_acc;
+      V v_dot = der.v_dot, beta_dot = der.beta_dot, yaw_acc = der.yaw_acc;
+      // Below the seam speed: core::KinematicSingleTrack, which sets the sideslip and the yaw
+      // rate itself (the dynamic model's numbers are dropped in those lanes).
+      V beta_e = beta, yr_e = yr, cb_e = cb, sb_e = sb, course_xe = course_x, course_ye = course_y;
+      const auto kin = hn::Lt(v, hn::Set(d, h.seam_speed));
+      if (!hn::AllFalse(d, kin)) {
+        V kv_dot = h.model == core::MotionModelKind::kTwoTrack
+                       ? hn::Mul(hn::Set(d, mu_g), kin_factor)
+                       : kin_factor;
+        const double wheelbase = p.lf_m + p.lr_m;
+        V tan_steer = hn::Div(hn::Sin(d, steer), hn::Cos(d, steer));
+        if (p.friction_limited) {
+          kv_dot = ClampV(kv_dot, hn::Set(d, -mu_g), hn::Set(d, mu_g));
+          const V room = hn::Sub(hn::Set(d, mu_g * mu_g), hn::Mul(kv_dot, kv_dot));
+          const V lateral = hn::Sqrt(hn::IfThenElse(hn::Lt(zero, room), room, zero));
+          const V v2 = hn::Mul(v, v);
+          const V lw = hn::Mul(lateral, hn::Set(d, wheelbase));
+          const auto over = hn::Gt(hn::Mul(v2, hn::Abs(tan_steer)), lw);
+          tan_steer = hn::IfThenElse(over, hn::CopySign(hn::Div(lw, v2), tan_steer), tan_steer);
+        }
+        const V kbeta =
+            hn::Atan(d, hn::Div(hn::Mul(hn::Set(d, p.lr_m), tan_steer), hn::Set(d, wheelbase)));
+        const V kcb = hn::Cos(d, kbeta), ksb = hn::Sin(d, kbeta);
+        const V kyr = hn::Div(hn::Mul(hn::Mul(v, kcb), tan_steer), hn::Set(d, wheelbase));
+        v_dot = hn::IfThenElse(kin, kv_dot, v_dot);
+        beta_dot = hn::IfThenElseZero(hn::Not(kin), beta_dot);
+        yaw_acc = hn::IfThenElseZero(hn::Not(kin), yaw_acc);
+        beta_e = hn::IfThenElse(kin, kbeta, beta);
+        yr_e = hn::IfThenElse(kin, kyr, yr);
+        cb_e = hn::IfThenElse(kin, kcb, cb);
+        sb_e = hn::IfThenElse(kin, ksb, sb);
+        course_xe = hn::Sub(hn::Mul(cy, cb_e), hn::Mul(sy, sb_e));
+        course_ye = hn::Add(hn::Mul(sy, cb_e), hn::Mul(cy, sb_e));
+      }
 
       // TopSpeedAccel, then NonReversingAccel.
       const V top = hn::Set(d, h.top_speed);
@@ -327,19 +361,19 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
 
       // EulerStep
       const V h2 = hn::Set(d, half_tau2);
-      const V nx = hn::Sub(hn::Add(hn::Add(x, hn::Mul(hn::Mul(course_x, v), vtau)),
+      const V nx = hn::Sub(hn::Add(hn::Add(x, hn::Mul(hn::Mul(course_xe, v), vtau)),
                                    hn::Mul(hn::Mul(cy, ax), h2)),
                            hn::Mul(hn::Mul(sy, ay), h2));
-      const V ny = hn::Add(hn::Add(hn::Add(y, hn::Mul(hn::Mul(course_y, v), vtau)),
+      const V ny = hn::Add(hn::Add(hn::Add(y, hn::Mul(hn::Mul(course_ye, v), vtau)),
                                    hn::Mul(hn::Mul(sy, ax), h2)),
                            hn::Mul(hn::Mul(cy, ay), h2));
-      const V turn = hn::Mul(v, hn::Add(beta_dot, yr));
-      const V nax = hn::Sub(hn::Mul(cb, v_dot), hn::Mul(sb, turn));
-      const V nay = hn::Add(hn::Mul(sb, v_dot), hn::Mul(cb, turn));
-      const V nyaw = hn::Add(hn::Add(yaw, hn::Mul(yr, vtau)), hn::Mul(yaw_acc, h2));
-      const V nyr = hn::Add(yr, hn::Mul(yaw_acc, vtau));
+      const V turn = hn::Mul(v, hn::Add(beta_dot, yr_e));
+      const V nax = hn::Sub(hn::Mul(cb_e, v_dot), hn::Mul(sb_e, turn));
+      const V nay = hn::Add(hn::Mul(sb_e, v_dot), hn::Mul(cb_e, turn));
+      const V nyaw = hn::Add(hn::Add(yaw, hn::Mul(yr_e, vtau)), hn::Mul(yaw_acc, h2));
+      const V nyr = hn::Add(yr_e, hn::Mul(yaw_acc, vtau));
       V nv = hn::Add(v, hn::Mul(v_dot, vtau));
-      const V nbeta = hn::Add(beta, hn::Mul(beta_dot, vtau));
+      const V nbeta = hn::Add(beta_e, hn::Mul(beta_dot, vtau));
       nv = hn::IfThenElse(hn::Lt(nv, zero), zero, nv);  // rounding guard
       const V travelled = hn::Add(hn::LoadU(d, L.travelled), hn::Mul(nv, vtau));
       hn::StoreU(nx, d, L.x);
@@ -357,8 +391,8 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       V px = nx, py = ny;
       if (h.position_lead > 0.0) {
         const V shift = hn::Mul(hn::Sub(nv, hn::Set(d, h.v0)), hn::Set(d, h.position_lead));
-        px = hn::Add(px, hn::Mul(course_x, shift));
-        py = hn::Add(py, hn::Mul(course_y, shift));
+        px = hn::Add(px, hn::Mul(course_xe, shift));
+        py = hn::Add(py, hn::Mul(course_ye, shift));
       }
       const V c0 = hn::Set(d, ctx.c0), s0 = hn::Set(d, ctx.s0);
       V wx = hn::Sub(hn::Add(hn::Set(d, h.X_WL.x), hn::Mul(c0, px)), hn::Mul(s0, py));
@@ -375,21 +409,6 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
         span->x[first + l][n] = bx[l];
         span->y[first + l][n] = by[l];
         span->yaw[first + l][n] = byaw[l];
-      }
-    } else {  // some lane drives the kinematic model: the scalar step, lane by lane
-      for (int l = 0; l < count; ++l) {
-        core::SimulationState st = span->state[first + l];
-        FromLanes(L, l, &st);
-        st.instant = instant;
-        const int lane = first + l;
-        core::VehicleStep(h, cfg, span->profile, span->path[lane], n, &ctx, &st,
-                          &span->x[lane][n], &span->y[lane][n], &span->yaw[lane][n]);
-        ToLanes(st, l, &L);
-      }
-      for (size_t l = count; l < N; ++l) {  // padding lanes repeat lane 0 of the chunk
-        core::SimulationState st;
-        FromLanes(L, 0, &st);
-        ToLanes(st, l, &L);
       }
     }
   }

@@ -159,6 +159,7 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
     Bad(WithOptionNames(e.what()));
   }
   o->estimator.reach_shortcut = !raw.no_shortcut;
+  o->estimator.simd = !raw.no_simd;
   auto given = [&](const char* name) { return vm.count(name) && !vm[name].defaulted(); };
   if (given("profiles")) p.profiles = o->params.profiles;
   if (given("own-lane-samples")) p.own_lane_samples = o->params.own_lane_samples;

@@ -154,6 +154,9 @@ void OptionTable::Estimator(DriverOptions* o) {
       "with it")("step", Value(&p.step_s), "prediction step (s)")(
       "range", Value(&o->observe.range_m),
       "vehicles and pedestrians within this distance of an ego are considered (m)")(
+      "no-simd", po::bool_switch(&raw.no_simd),
+      "cpu backend: the scalar fast path instead of SIMD lanes (the same pair matrix as the "
+      "plain reference, bit for bit; SIMD differs at most in contacts within 1 mm)")(
       "no-reach-shortcut", po::bool_switch(&raw.no_shortcut),
       "estimate objects that cannot reach the ego within the horizon, and egos with no object "
       "in reach, in full (the exact shortcut changes no result; this is for checking that)");
