@@ -122,12 +122,7 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
                       internal::SiblingSpan* span) {
     const int width = Power(L, K - 1 - k);  // paths below each child
     const int n0 = boundary_[k], n1 = boundary_[k + 1];
-    span->h = &ego;
-    span->cfg = &pb.sim;
-    span->profile = profile;
-    span->n_begin = n0;
-    span->n_end = n1;
-    span->lanes = L;
+    *span = internal::SpanOf(ego, pb.sim, profile, n0, n1, L);
     for (int c = 0; c < L; ++c) {
       const int group = parent * L + c;
       const size_t at = ego_.Offset(profile * ego.n_paths + group * width);
@@ -194,13 +189,7 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
       const core::HypothesisSet& h = pb.cos[o];
       const int j0 = pb.co_offset[o] + profile * h.n_paths;
       if (simd_ && internal::SiblingStepsApply(h, pb.sim)) {
-        internal::SiblingSpan span;
-        span.h = &h;
-        span.cfg = &pb.sim;
-        span.profile = profile;
-        span.n_begin = 0;
-        span.n_end = steps;
-        span.lanes = h.n_paths;
+        internal::SiblingSpan span = internal::SpanOf(h, pb.sim, profile, 0, steps, h.n_paths);
         for (int path = 0; path < h.n_paths; ++path) {
           const size_t at = co_.Offset(j0 + path);
           span.path[path] = path;

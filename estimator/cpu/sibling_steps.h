@@ -34,6 +34,20 @@ struct SiblingSpan {
   double* yaw[core::kMaxLateralSamples]{};
 };
 
+/** A span of `lanes` paths of (h, profile) over steps [n_begin, n_end); the caller sets each
+ *  lane's path, start state and pose arrays. */
+inline SiblingSpan SpanOf(const core::HypothesisSet& h, const core::SimulationConfig& cfg,
+                          int profile, int n_begin, int n_end, int lanes) {
+  SiblingSpan span;
+  span.h = &h;
+  span.cfg = &cfg;
+  span.profile = profile;
+  span.n_begin = n_begin;
+  span.n_end = n_end;
+  span.lanes = lanes;
+  return span;
+}
+
 /** Whether SimulateSiblingSteps covers this set: a two-track or one-track vehicle off any
  *  track with the lateral controller on; else simulate each path with
  *  core::SimulateVehicleSteps (pedestrians: core::SimulateHypothesis). */

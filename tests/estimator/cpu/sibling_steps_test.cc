@@ -34,13 +34,8 @@ double MaxPoseDifference(const Problem& pb, const core::HypothesisSet& h,
   const int steps = pb.sim.n_steps;
   double worst = 0.0;
   for (int profile = 0; profile < h.n_profiles; ++profile) {
-    internal::SiblingSpan span;
-    span.h = &h;
-    span.cfg = &pb.sim;
-    span.profile = profile;
-    span.n_begin = 0;
-    span.n_end = steps;
-    span.lanes = static_cast<int>(paths.size());
+    internal::SiblingSpan span =
+        internal::SpanOf(h, pb.sim, profile, 0, steps, static_cast<int>(paths.size()));
     std::vector<std::vector<double>> x(paths.size(), std::vector<double>(steps)), y = x, yaw = x;
     std::vector<double> rx(steps), ry(steps), ryaw(steps);
     for (size_t l = 0; l < paths.size(); ++l) {
