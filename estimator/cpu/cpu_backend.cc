@@ -51,9 +51,11 @@ CpuBackend::CpuBackend(int threads, bool simd)
 
 void CpuBackend::FinishSpan(const TrajectoryStore& t, std::vector<double>* c,
                             std::vector<double>* s, BlockBounds* b, int tr, int n0, int n1, int q0,
-                            int q1) const {
+                            int q1, bool trig_done) const {
   const size_t base = t.Offset(tr);
-  if (simd_) {
+  if (trig_done) {
+    // the simulation wrote cos/sin already (SiblingSpan::c, s)
+  } else if (simd_) {
     internal::CosSin(&t.yaw[base + n0], n1 - n0, &(*c)[base + n0], &(*s)[base + n0]);
   } else {
     for (int n = n0; n < n1; ++n) {
@@ -143,6 +145,8 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
           span.x[c] = &ego_.x[at];
           span.y[c] = &ego_.y[at];
           span.yaw[c] = &ego_.yaw[at];
+          span.c[c] = &ego_cos_[at];
+          span.s[c] = &ego_sin_[at];
         }
         if (lanes) {
           internal::SimulateSiblingSteps(&span);
@@ -160,7 +164,7 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
           const int first = profile * ego.n_paths + g * width;
           const size_t at = ego_.Offset(first);
           FinishSpan(ego_, &ego_cos_, &ego_sin_, &ego_bounds_, first, n0, n1, phase_block_[k],
-                     phase_block_[k + 1]);
+                     phase_block_[k + 1], lanes);
           for (int p = 1; p < width; ++p) {
             const size_t to = ego_.Offset(first + p) + n0, from = at + n0;
             for (std::vector<double>* v : {&ego_.x, &ego_.y, &ego_.yaw}) {
@@ -184,7 +188,8 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
       const auto [o, profile] = co_tasks[task];
       const core::HypothesisSet& h = pb.cos[o];
       const int j0 = pb.co_offset[o] + profile * h.n_paths;
-      if (simd_ && internal::SiblingStepsApply(h, pb.sim)) {
+      const bool co_lanes = simd_ && internal::SiblingStepsApply(h, pb.sim);
+      if (co_lanes) {
         internal::SiblingSpan span = internal::SpanOf(h, pb.sim, profile, 0, steps, h.n_paths);
         for (int path = 0; path < h.n_paths; ++path) {
           const size_t at = co_.Offset(j0 + path);
@@ -193,6 +198,8 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
           span.x[path] = &co_.x[at];
           span.y[path] = &co_.y[at];
           span.yaw[path] = &co_.yaw[at];
+          span.c[path] = &co_cos_[at];
+          span.s[path] = &co_sin_[at];
         }
         internal::SimulateSiblingSteps(&span);
       } else {
@@ -202,7 +209,7 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
         }
       }
       for (int path = 0; path < h.n_paths; ++path)
-        FinishSpan(co_, &co_cos_, &co_sin_, &co_bounds_, j0 + path, 0, steps, 0, blocks);
+        FinishSpan(co_, &co_cos_, &co_sin_, &co_bounds_, j0 + path, 0, steps, 0, blocks, co_lanes);
     }
   });
 

@@ -46,10 +46,11 @@ class CpuBackend final : public EstimatorBackend {
   };
   /** Sizes b for t's trajectories (FinishSpan fills it). */
   void ResizeBounds(const internal::TrajectoryStore& t, BlockBounds* b) const;
-  // cos/sin of steps [n0, n1) and bounds of blocks [q0, q1) of one trajectory.
+  // cos/sin of steps [n0, n1) (unless trig_done: the simulation wrote them) and bounds of
+  // blocks [q0, q1) of one trajectory.
   void FinishSpan(const internal::TrajectoryStore& t, std::vector<double>* c,
                   std::vector<double>* s, BlockBounds* b, int trajectory, int n0, int n1, int q0,
-                  int q1) const;
+                  int q1, bool trig_done = false) const;
 
   int threads_;
   bool simd_;

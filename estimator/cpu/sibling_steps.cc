@@ -27,6 +27,7 @@ constexpr size_t kBuf = 16;  // lanes of the widest vector of doubles Highway ha
 struct Lanes {
   double x[kBuf], y[kBuf], yaw[kBuf], v[kBuf], beta[kBuf], yaw_rate[kBuf], ax[kBuf], ay[kBuf];
   double steer[kBuf], travelled[kBuf];
+  double cyaw[kBuf], syaw[kBuf];  // cos/sin of yaw, from the end of the step before
   // The section each lane tracks now (parabola coefficients and frame).
   double a[kBuf], b[kBuf], c[kBuf], rot[kBuf], cos_rot[kBuf], sin_rot[kBuf], x_start[kBuf],
       x_end[kBuf];
@@ -221,6 +222,12 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
   const V vtau = hn::Set(d, tau);
   const V neg_pi = hn::Set(d, -core::kPi), pi = hn::Set(d, core::kPi);
 
+  {
+    const V yaw0 = hn::LoadU(d, L.yaw);
+    hn::StoreU(hn::Cos(d, yaw0), d, L.cyaw);
+    hn::StoreU(hn::Sin(d, yaw0), d, L.syaw);
+  }
+  const bool heading_trig = span->c[first] != nullptr;
   int section_key = -2;  // (latent, instant) the section lanes were filled for
   for (int n = span->n_begin; n < span->n_end; ++n) {
     const double t = n * tau;
@@ -240,7 +247,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       const V beta = hn::LoadU(d, L.beta), yr = hn::LoadU(d, L.yaw_rate);
       const V ax = hn::LoadU(d, L.ax), ay = hn::LoadU(d, L.ay);
       const V cb = hn::Cos(d, beta), sb = hn::Sin(d, beta);
-      const V cy = hn::Cos(d, yaw), sy = hn::Sin(d, yaw);
+      const V cy = hn::LoadU(d, L.cyaw), sy = hn::LoadU(d, L.syaw);
       const V course_x = hn::Sub(hn::Mul(cy, cb), hn::Mul(sy, sb));
       const V course_y = hn::Add(hn::Mul(sy, cb), hn::Mul(cy, sb));
 
@@ -401,6 +408,19 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       wx = hn::IfThenElse(gone, hn::Set(d, core::GoneX(h)), wx);
       wy = hn::IfThenElseZero(hn::Not(gone), wy);
       const V wyaw = hn::Add(hn::Set(d, h.X_WL.yaw), nyaw);
+      // cos/sin of the new yaw: the next step's, and (turned by the frame's) the pose's.
+      const V ncy = hn::Cos(d, nyaw), nsy = hn::Sin(d, nyaw);
+      hn::StoreU(ncy, d, L.cyaw);
+      hn::StoreU(nsy, d, L.syaw);
+      if (heading_trig) {
+        double bc[kBuf], bs[kBuf];
+        hn::StoreU(hn::Sub(hn::Mul(c0, ncy), hn::Mul(s0, nsy)), d, bc);
+        hn::StoreU(hn::Add(hn::Mul(s0, ncy), hn::Mul(c0, nsy)), d, bs);
+        for (int l = 0; l < count; ++l) {
+          span->c[first + l][n] = bc[l];
+          span->s[first + l][n] = bs[l];
+        }
+      }
       double bx[kBuf], by[kBuf], byaw[kBuf];
       hn::StoreU(wx, d, bx);
       hn::StoreU(wy, d, by);

@@ -32,6 +32,11 @@ struct SiblingSpan {
   double* x[core::kMaxLateralSamples]{};
   double* y[core::kMaxLateralSamples]{};
   double* yaw[core::kMaxLateralSamples]{};
+  /** Optional (null: not written): cos and sin of the scene-frame heading of step n, to
+   *  c[l][n] and s[l][n], from the cos/sin of the local yaw that the next step uses anyway,
+   *  turned by the local frame's (the angle-sum identity: within a few ulp of cos(yaw)). */
+  double* c[core::kMaxLateralSamples]{};
+  double* s[core::kMaxLateralSamples]{};
 };
 
 /** A span of `lanes` paths of (h, profile) over steps [n_begin, n_end); the caller sets each

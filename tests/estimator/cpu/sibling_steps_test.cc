@@ -36,7 +36,8 @@ double MaxPoseDifference(const Problem& pb, const core::HypothesisSet& h,
   for (int profile = 0; profile < h.n_profiles; ++profile) {
     internal::SiblingSpan span =
         internal::SpanOf(h, pb.sim, profile, 0, steps, static_cast<int>(paths.size()));
-    std::vector<std::vector<double>> x(paths.size(), std::vector<double>(steps)), y = x, yaw = x;
+    std::vector<std::vector<double>> x(paths.size(), std::vector<double>(steps)), y = x, yaw = x,
+                                     c = x, sn = x;
     std::vector<double> rx(steps), ry(steps), ryaw(steps);
     for (size_t l = 0; l < paths.size(); ++l) {
       span.path[l] = paths[l];
@@ -44,6 +45,8 @@ double MaxPoseDifference(const Problem& pb, const core::HypothesisSet& h,
       span.x[l] = x[l].data();
       span.y[l] = y[l].data();
       span.yaw[l] = yaw[l].data();
+      span.c[l] = c[l].data();
+      span.s[l] = sn[l].data();
     }
     internal::SimulateSiblingSteps(&span);
     for (size_t l = 0; l < paths.size(); ++l) {
@@ -53,6 +56,9 @@ double MaxPoseDifference(const Problem& pb, const core::HypothesisSet& h,
       for (int n = 0; n < steps; ++n) {
         worst = std::max({worst, std::fabs(x[l][n] - rx[n]), std::fabs(y[l][n] - ry[n]),
                           std::fabs(yaw[l][n] - ryaw[n])});
+        // the heading's cos/sin, from the local yaw's turned by the frame's
+        worst = std::max({worst, std::fabs(c[l][n] - std::cos(ryaw[n])),
+                          std::fabs(sn[l][n] - std::sin(ryaw[n]))});
       }
       worst = std::max(worst, std::fabs(span.state[l].s.v - st.s.v));
       EXPECT_EQ(span.state[l].instant, st.instant);
