@@ -15,9 +15,10 @@
 //    its descendant paths from its span to the horizon, each CO trajectory one around its
 //    poses over the same steps; when they are apart, no descendant can collide.
 //  - cos/sin of every pose computed once; threads over independent tree roots.
-//  - With simd (the default), the children of a node are simulated together in SIMD lanes
-//    (cpu/sibling_steps.h) and cos/sin come from vector math: the pair matrix then equals the
-//    reference's except for grazing contacts.
+//  - With simd (the default), the nodes of one profile and level, and another vehicle's paths
+//    of one profile, are simulated together in SIMD lanes (cpu/sibling_steps.h), with cos/sin
+//    from vector math: the pair matrix then equals the reference's except for grazing
+//    contacts.
 #include <vector>
 
 #include "core/hypothesis_set.h"

@@ -1,14 +1,14 @@
 #pragma once
-// Sibling paths in SIMD lanes (issue 23). The children of a node of the ego's section tree
-// start from the same state and differ only in the path section they track over the node's
-// span; the paths of another vehicle's profile differ only in their lateral sample. Either
-// group is simulated together, one path per lane of the widest vector unit the CPU has
-// (Highway's run-time dispatch: AVX-512, AVX2, SSE4, NEON, ... from one source), through the
-// same steps as core::VehicleStep (controller, two-track or one-track model, Euler step,
-// pose), with the same arithmetic in the same order; only sin, cos and atan come from
-// Highway's vector math (within 3 ulp of libm) instead of libm. A step where some lane is
-// below the seam speed (the kinematic model) runs core::VehicleStep lane by lane; an angle
-// that needs wrapping is wrapped lane by lane by core::WrapAngle.
+// Paths in SIMD lanes (issue 23). The ego's section-tree nodes of one profile and level
+// (each from its parent's end state, tracking its own section over the level's span) and
+// another vehicle's paths of one profile (each with its own lateral sample) are simulated
+// together, one path per lane of the widest vector unit the CPU has (Highway's run-time
+// dispatch: AVX-512, AVX2, SSE4, NEON, ... from one source), through the same steps as
+// core::VehicleStep (controller, two-track or one-track model, the kinematic model below the
+// seam speed, lane by lane through masks, Euler step, pose), with the same arithmetic in the
+// same order; only sin, cos, atan and tan (as sin / cos) come from Highway's vector math
+// (within 3 ulp of libm) instead of libm. An angle that needs wrapping is wrapped lane by lane
+// by core::WrapAngle.
 //
 // CosSin is the same vector math over an array (the poses' cos/sin for the box tests).
 #include <cstddef>
