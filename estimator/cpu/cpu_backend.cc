@@ -31,11 +31,9 @@ struct Aabb {
   }
 };
 
-void StoreCircle(const Aabb& a, size_t k, std::vector<double>* cx, std::vector<double>* cy,
-                 std::vector<double>* r) {
-  (*cx)[k] = 0.5 * (a.x0 + a.x1);
-  (*cy)[k] = 0.5 * (a.y0 + a.y1);
-  (*r)[k] = 0.5 * std::hypot(a.x1 - a.x0, a.y1 - a.y0);
+template <class C>
+void StoreCircle(const Aabb& a, size_t k, std::vector<C>* c) {
+  (*c)[k] = C{0.5 * (a.x0 + a.x1), 0.5 * (a.y0 + a.y1), 0.5 * std::hypot(a.x1 - a.x0, a.y1 - a.y0)};
 }
 
 int Power(int base, int exp) {
@@ -75,18 +73,14 @@ void CpuBackend::FinishSpan(const TrajectoryStore& t, std::vector<double>* c,
       y1 = std::max(y1, y[n]);
     }
     const size_t k = static_cast<size_t>(tr) * blocks + q;
-    b->cx[k] = 0.5 * (x0 + x1);
-    b->cy[k] = 0.5 * (y0 + y1);
-    b->r[k] = 0.5 * std::hypot(x1 - x0, y1 - y0);
+    b->c[k] = Circle{0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * std::hypot(x1 - x0, y1 - y0)};
   }
 }
 
 void CpuBackend::ResizeBounds(const TrajectoryStore& t, BlockBounds* b) const {
   const int blocks = static_cast<int>(block_begin_.size()) - 1;
   const size_t n = static_cast<size_t>(t.trajectories) * blocks;
-  b->cx.resize(n);
-  b->cy.resize(n);
-  b->r.resize(n);
+  b->c.resize(n);
 }
 
 void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
@@ -218,9 +212,7 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   for (int k = 0; k < K; ++k) node_offset_[k + 1] = node_offset_[k] + Power(L, k + 1);
   const int nodes = node_offset_[K];
   const size_t n_node_bounds = static_cast<size_t>(ego.n_profiles) * nodes;
-  node_bounds_.cx.resize(n_node_bounds);
-  node_bounds_.cy.resize(n_node_bounds);
-  node_bounds_.r.resize(n_node_bounds);
+  node_bounds_.c.resize(n_node_bounds);
   auto sweep = [&](auto&& self, int profile, int k, int group) -> Aabb {
     Aabb box;
     if (k >= core::kMaxSampleInstants) return box;  // never: K <= kMaxSampleInstants
@@ -231,23 +223,21 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
       for (int c = 0; c < L; ++c) box.Add(self(self, profile, k + 1, group * L + c));
     }
     StoreCircle(box, static_cast<size_t>(profile) * nodes + node_offset_[k] + group,
-                &node_bounds_.cx, &node_bounds_.cy, &node_bounds_.r);
+                &node_bounds_.c);
     return box;
   };
   internal::ParallelFor(ego.n_profiles * L, threads_, [&](int begin, int end) {
     for (int task = begin; task < end; ++task) sweep(sweep, task / L, 0, task % L);
   });
   const size_t n_tail = static_cast<size_t>(pb.CoTrajectories()) * K;
-  co_tail_.cx.resize(n_tail);
-  co_tail_.cy.resize(n_tail);
-  co_tail_.r.resize(n_tail);
+  co_tail_.c.resize(n_tail);
   internal::ParallelFor(pb.CoTrajectories(), threads_, [&](int begin, int end) {
     for (int j = begin; j < end; ++j) {
       Aabb box;
       const size_t at = co_.Offset(j);
       for (int k = K - 1; k >= 0; --k) {  // tails grow backwards from the horizon
         for (int n = boundary_[k]; n < boundary_[k + 1]; ++n) box.Add(co_.x[at + n], co_.y[at + n]);
-        StoreCircle(box, static_cast<size_t>(j) * K + k, &co_tail_.cx, &co_tail_.cy, &co_tail_.r);
+        StoreCircle(box, static_cast<size_t>(j) * K + k, &co_tail_.c);
       }
     }
   });
@@ -270,9 +260,10 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
     const core::HypothesisSet& co = pb.cos[pb.co_object_of[j]];
     const double reach2 = reach * reach;
     for (int q = phase_block_[k]; q < phase_block_[k + 1]; ++q) {
-      const double bx = ego_bounds_.cx[eb + q] - co_bounds_.cx[cb + q];
-      const double by = ego_bounds_.cy[eb + q] - co_bounds_.cy[cb + q];
-      const double br = ego_bounds_.r[eb + q] + co_bounds_.r[cb + q] + reach;
+      const Circle &e = ego_bounds_.c[eb + q], &o = co_bounds_.c[cb + q];
+      const double bx = e.cx - o.cx;
+      const double by = e.cy - o.cy;
+      const double br = e.r + o.r + reach;
       if (bx * bx + by * by > br * br) continue;  // the whole block is apart
       for (int n = block_begin_[q]; n < block_begin_[q + 1]; ++n) {
         const double dx = co_.x[cj + n] - ego_.x[ei + n], dy = co_.y[cj + n] - ego_.y[ei + n];
@@ -301,9 +292,9 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
         // Swept bounds: nothing below this node comes near this CO trajectory.
         const size_t nb = static_cast<size_t>(profile) * nodes + node_offset_[k] + group;
         const size_t tb = static_cast<size_t>(j) * K + k;
-        const double sx = node_bounds_.cx[nb] - co_tail_.cx[tb],
-                     sy = node_bounds_.cy[nb] - co_tail_.cy[tb];
-        const double sr = node_bounds_.r[nb] + co_tail_.r[tb] + reach;
+        const Circle &nc = node_bounds_.c[nb], &tc = co_tail_.c[tb];
+        const double sx = nc.cx - tc.cx, sy = nc.cy - tc.cy;
+        const double sr = nc.r + tc.r + reach;
         if (sx * sx + sy * sy > sr * sr) return;
         const int width = Power(L, K - 1 - k);
         const int first = profile * ego.n_paths + group * width;

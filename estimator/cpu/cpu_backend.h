@@ -42,8 +42,11 @@ class CpuBackend final : public EstimatorBackend {
 
  private:
   // Bounding circles of the centres of every trajectory over every block.
+  struct Circle {
+    double cx, cy, r;
+  };
   struct BlockBounds {
-    std::vector<double> cx, cy, r;  ///< [trajectory * blocks + block]
+    std::vector<Circle> c;  ///< [trajectory * blocks + block]: centre and radius together
   };
   /** Sizes b for t's trajectories (FinishSpan fills it). */
   void ResizeBounds(const internal::TrajectoryStore& t, BlockBounds* b) const;
