@@ -51,8 +51,7 @@ void CpuBackend::FinishSpan(const TrajectoryStore& t, std::vector<double>* c,
                             std::vector<double>* s, BlockBounds* b, int tr, int n0, int n1, int q0,
                             int q1, bool trig_done) const {
   const size_t base = t.Offset(tr);
-  if (trig_done) {
-    // the simulation wrote cos/sin already (SiblingSpan::c, s)
+  if (trig_done) {  // the simulation wrote cos/sin already (SiblingSpan::c, s)
   } else if (simd_) {
     internal::CosSin(&t.yaw[base + n0], n1 - n0, &(*c)[base + n0], &(*s)[base + n0]);
   } else {
@@ -132,15 +131,10 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
         const int g1 = std::min(count, g0 + kPack);
         internal::SiblingSpan span = internal::SpanOf(ego, pb.sim, profile, n0, n1, g1 - g0);
         for (int g = g0; g < g1; ++g) {
-          const int c = g - g0;
           const size_t at = ego_.Offset(profile * ego.n_paths + g * width);
-          span.path[c] = g * width;
-          span.state[c] = parents[static_cast<size_t>(profile) * (count / L) + g / L];
-          span.x[c] = &ego_.x[at];
-          span.y[c] = &ego_.y[at];
-          span.yaw[c] = &ego_.yaw[at];
-          span.c[c] = &ego_cos_[at];
-          span.s[c] = &ego_sin_[at];
+          internal::SetLane(&span, g - g0, g * width,
+                            parents[static_cast<size_t>(profile) * (count / L) + g / L],
+                            &ego_.x[at], &ego_.y[at], &ego_.yaw[at], &ego_cos_[at], &ego_sin_[at]);
         }
         if (lanes) {
           internal::SimulateSiblingSteps(&span);
@@ -187,13 +181,8 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
         internal::SiblingSpan span = internal::SpanOf(h, pb.sim, profile, 0, steps, h.n_paths);
         for (int path = 0; path < h.n_paths; ++path) {
           const size_t at = co_.Offset(j0 + path);
-          span.path[path] = path;
-          span.state[path] = core::InitialSimulationState(h, pb.sim);
-          span.x[path] = &co_.x[at];
-          span.y[path] = &co_.y[at];
-          span.yaw[path] = &co_.yaw[at];
-          span.c[path] = &co_cos_[at];
-          span.s[path] = &co_sin_[at];
+          internal::SetLane(&span, path, path, core::InitialSimulationState(h, pb.sim),
+                            &co_.x[at], &co_.y[at], &co_.yaw[at], &co_cos_[at], &co_sin_[at]);
         }
         internal::SimulateSiblingSteps(&span);
       } else {

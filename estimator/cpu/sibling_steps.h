@@ -53,6 +53,19 @@ inline SiblingSpan SpanOf(const core::HypothesisSet& h, const core::SimulationCo
   return span;
 }
 
+/** Lane l of `span`: `path` from `start`, its poses written from x, y, yaw (and, when c and s
+ *  are given, the heading's cos/sin) at index n_begin on. */
+inline void SetLane(SiblingSpan* span, int l, int path, const core::SimulationState& start,
+                    double* x, double* y, double* yaw, double* c = nullptr, double* s = nullptr) {
+  span->path[l] = path;
+  span->state[l] = start;
+  span->x[l] = x;
+  span->y[l] = y;
+  span->yaw[l] = yaw;
+  span->c[l] = c;
+  span->s[l] = s;
+}
+
 /** Whether SimulateSiblingSteps covers this set: a two-track or one-track vehicle off any
  *  track with the lateral controller on; else simulate each path with
  *  core::SimulateVehicleSteps (pedestrians: core::SimulateHypothesis). */

@@ -40,13 +40,8 @@ double MaxPoseDifference(const Problem& pb, const core::HypothesisSet& h,
                                      c = x, sn = x;
     std::vector<double> rx(steps), ry(steps), ryaw(steps);
     for (size_t l = 0; l < paths.size(); ++l) {
-      span.path[l] = paths[l];
-      span.state[l] = core::InitialSimulationState(h, pb.sim);
-      span.x[l] = x[l].data();
-      span.y[l] = y[l].data();
-      span.yaw[l] = yaw[l].data();
-      span.c[l] = c[l].data();
-      span.s[l] = sn[l].data();
+      internal::SetLane(&span, static_cast<int>(l), paths[l], core::InitialSimulationState(h, pb.sim),
+                        x[l].data(), y[l].data(), yaw[l].data(), c[l].data(), sn[l].data());
     }
     internal::SimulateSiblingSteps(&span);
     for (size_t l = 0; l < paths.size(); ++l) {
@@ -73,7 +68,7 @@ std::vector<int> SpreadPaths(const core::HypothesisSet& h, int count) {
   return paths;
 }
 
-TEST(SiblingSteps, AppliesToTheEgosTwoTrackHypotheses) {
+TEST(SiblingSteps, AppliesToVehiclesWithTheControllerOn) {
   const Problem pb = BuildProblem(bench::PaperSceneS1(), Params{});
   EXPECT_TRUE(internal::SiblingStepsApply(pb.ego, pb.sim));
   ASSERT_FALSE(pb.cos.empty());
@@ -152,8 +147,9 @@ std::vector<std::int16_t> ReferenceMatrix(Problem pb, double grow) {
 
 int Never(std::int16_t s) { return s == 0 ? std::numeric_limits<int>::max() : s; }
 
-// Returns the pairs whose first step differs from the reference's.
-size_t ExpectWithinAMillimetre(const Scene& scene, const Params& params, const std::string& what) {
+// Returns the pairs whose first step differs from the reference's; adds the pairs to *pairs.
+size_t ExpectWithinAMillimetre(const Scene& scene, const Params& params, const std::string& what,
+                               size_t* pairs) {
   const Problem pb = BuildProblem(scene, params);
   const std::vector<std::int16_t> exact = ReferenceMatrix(pb, 0.0);
   const std::vector<std::int16_t> grown = ReferenceMatrix(pb, 1e-3);
@@ -163,6 +159,7 @@ size_t ExpectWithinAMillimetre(const Scene& scene, const Params& params, const s
   std::vector<std::int16_t> fast;
   simd.RecognizeCollisions(pb, &fast);
   EXPECT_EQ(fast.size(), exact.size()) << what;
+  *pairs += exact.size();
   size_t outside = 0, differing = 0;
   for (size_t k = 0; k < fast.size() && k < exact.size(); ++k) {
     differing += fast[k] != exact[k];
@@ -187,9 +184,7 @@ TEST(SiblingSteps, PairMatrixIsTheReferencesUpToGrazingContacts) {
   coarse.step_s = 0.05;
   for (const Params& params : {Params{}, coarse}) {
     for (const auto& [name, scene] : scenes) {
-      differing += ExpectWithinAMillimetre(scene, params, name);
-      pairs += BuildProblem(scene, params).EgoTrajectories() *
-               static_cast<size_t>(BuildProblem(scene, params).CoTrajectories());
+      differing += ExpectWithinAMillimetre(scene, params, name, &pairs);
     }
   }
   EXPECT_GT(pairs, 500000u);
