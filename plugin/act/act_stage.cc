@@ -59,7 +59,7 @@ void ActStage::Leaving(const Observation& obs, ActOutcome* out) {
   }
 }
 
-void ActStage::Warn(const ObjectSnapshot& ego, const Result& r, double t, double p,
+void ActStage::Warn(const ObjectSnapshot& ego, const Result& r, double t, double p, bool publish,
                     ActOutcome* out) {
   if (const auto change = episodes_.Update(ego.id, t, p)) {
     WarningEvent w;
@@ -75,7 +75,7 @@ void ActStage::Warn(const ObjectSnapshot& ego, const Result& r, double t, double
     }
     out->warnings.push_back(std::move(w));
   }
-  world_->Publish(ego.id, p, episodes_.Warning(ego.id));
+  if (publish) world_->Publish(ego.id, p, episodes_.Warning(ego.id));
 }
 
 EgoStep ActStage::Row(const ObjectSnapshot& ego, const Result& r) const {
@@ -95,14 +95,14 @@ EgoStep ActStage::Row(const ObjectSnapshot& ego, const Result& r) const {
 }
 
 ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
-                         const std::vector<Result>& results) {
+                         const std::vector<Result>& results, const PublishTo& publish) {
   ActOutcome out;
   Leaving(obs, &out);
   for (size_t k = 0; k < batch.scenes.size(); ++k) {
     const ObjectSnapshot& ego = batch.EgoOf(k);
     const Result& r = results[k];
     const double p = WarnValue(config_.warn_on, r);
-    if (config_.act != Act::kNone) Warn(ego, r, obs.time_s, p, &out);
+    if (config_.act != Act::kNone) Warn(ego, r, obs.time_s, p, publish.Reaches(ego.id), &out);
     if (config_.act == Act::kBrake)
       closed_loop_.Step(obs.time_s, ego, batch.scenes[k], r, p, &out.actions);
     out.steps.push_back(Row(ego, r));

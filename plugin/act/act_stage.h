@@ -5,6 +5,7 @@
 // (closed_loop.h). An ego that arrives, vanishes or starts a teleport ends its episode and its
 // engagement. Every estimated ego gets its row of the step.
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "criticality/result.h"
@@ -18,18 +19,28 @@
 
 namespace criticality::plugin {
 
+/** Which egos the criticality is published to: every one (the step was just made), every one but
+ *  those that left SUMO or began a teleport since (the pipelined loop acts on a step after SUMO
+ *  made the next one), or none (SUMO failed). Episodes and rows are the same either way. */
+struct PublishTo {
+  bool any{true};
+  std::unordered_set<std::string> gone;
+  bool Reaches(const std::string& ego) const { return any && gone.count(ego) == 0; }
+};
+
 class ActStage {
  public:
   ActStage(const ActConfig& config, SumoWorld* world, double step_s);
   ActOutcome Run(const Observation& obs, const SceneBatch& batch,
-                 const std::vector<Result>& results);
+                 const std::vector<Result>& results, const PublishTo& publish = {});
   /** Egos whose warning episode is open (to close them when the run ends). */
   std::vector<std::string> OpenEpisodes() const { return episodes_.Open(); }
 
  private:
   /** Egos that left or started a teleport end their episode and engagement. */
   void Leaving(const Observation& obs, ActOutcome* out);
-  void Warn(const ObjectSnapshot& ego, const Result& r, double t, double p, ActOutcome* out);
+  void Warn(const ObjectSnapshot& ego, const Result& r, double t, double p, bool publish,
+            ActOutcome* out);
   EgoStep Row(const ObjectSnapshot& ego, const Result& r) const;
 
   ActConfig config_;

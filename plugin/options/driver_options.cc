@@ -117,6 +117,7 @@ void CheckSimulation(RunConfig* run, const RawOptions& raw, const po::variables_
     }
   }
   run->progress = !raw.no_progress;
+  run->pipeline = !raw.no_pipeline;
   if (!vm["end"].defaulted() && !(std::isfinite(run->end_time_s) && run->end_time_s >= 0.0)) {
     Bad("--end " + Number(run->end_time_s) + ": must be a finite time >= 0 s");
   }

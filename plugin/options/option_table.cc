@@ -143,7 +143,11 @@ void OptionTable::Estimator(DriverOptions* o) {
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(
       "threads", po::value(&o->estimator.threads)->default_value(0, "0 = all cores"),
-      "estimator threads")("profiles", Value(&p.profiles),
+      "estimator threads")(
+      "no-pipeline", po::bool_switch(&raw.no_pipeline),
+      "estimate each step before SUMO makes the next; by default, under --act none and warn, "
+      "step k is estimated on a thread of its own while SUMO makes step k+1 (the same results, "
+      "the criticality published to SUMO one step later; --act brake always waits)")("profiles", Value(&p.profiles),
                            "acceleration/slip profiles per object (paper: 6 or 5)")(
       "own-lane-samples", Value(&p.own_lane_samples),
       "lateral path samples across the own lane (paper: 3)")(

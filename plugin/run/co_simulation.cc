@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "plugin/act/act_stage.h"
+#include "plugin/estimate/estimate_ahead.h"
 #include "plugin/estimate/estimate_stage.h"
 #include "plugin/observe/observe_stage.h"
 #include "plugin/record/record_stage.h"
@@ -81,26 +82,47 @@ bool PrepareSceneFolder(const std::string& dir) {
   return true;
 }
 
-// The wall time of each stage of one step, and where they go.
-struct StepClock {
-  Clock::time_point t[7];
+// The wall time of each stage of one step (ms), and where they go. Pipelined, the estimate's is
+// its own thread's, overlapping SUMO's next step.
+struct StepDurations {
+  double sumo{0.0}, observe{0.0}, scenes{0.0}, estimate{0.0}, act{0.0}, record{0.0};
   void Into(StepTimeRow* row) const {
-    row->sumo_ms = 1e3 * Seconds(t[1] - t[0]);
-    row->observe_ms = 1e3 * Seconds(t[2] - t[1]);
-    row->scenes_ms = 1e3 * Seconds(t[3] - t[2]);
-    row->estimate_ms = 1e3 * Seconds(t[4] - t[3]);
-    row->act_ms = 1e3 * Seconds(t[5] - t[4]);
-    row->record_ms = 1e3 * Seconds(Clock::now() - t[5]);
+    row->sumo_ms = sumo;
+    row->observe_ms = observe;
+    row->scenes_ms = scenes;
+    row->estimate_ms = estimate;
+    row->act_ms = act;
+    row->record_ms = record;
   }
   void Into(StageTimes* st) const {
-    st->sumo_s += Seconds(t[1] - t[0]);
-    st->observe_s += Seconds(t[2] - t[1]);
-    st->scenes_s += Seconds(t[3] - t[2]);
-    st->estimate_s += Seconds(t[4] - t[3]);
-    st->act_s += Seconds(t[5] - t[4]);
-    st->record_s += Seconds(t[6] - t[5]);
+    st->sumo_s += 1e-3 * sumo;
+    st->observe_s += 1e-3 * observe;
+    st->scenes_s += 1e-3 * scenes;
+    st->estimate_s += 1e-3 * estimate;
+    st->act_s += 1e-3 * act;
+    st->record_s += 1e-3 * record;
   }
 };
+
+// Milliseconds since *t; *t becomes now.
+double Lap(Clock::time_point* t) {
+  const Clock::time_point now = Clock::now();
+  const double ms = 1e3 * Seconds(now - *t);
+  *t = now;
+  return ms;
+}
+
+// The egos of `next` (the step after the one being acted on) that SUMO no longer lets us
+// publish to: they left the simulation or began a teleport.
+PublishTo AllBut(const Observation& next) {
+  PublishTo to;
+  to.gone.insert(next.left.begin(), next.left.end());
+  for (const EgoEvent& e : next.ego_events) {
+    if (e.kind != EgoEventKind::kDepart && e.kind != EgoEventKind::kTeleportEnd)
+      to.gone.insert(e.ego);
+  }
+  return to;
+}
 
 // One run: SUMO, the results database and the five stages, stepped until the run ends.
 class CoSimulation {
@@ -117,10 +139,12 @@ class CoSimulation {
     try {
       Start();
       while (!Ended()) Step();
+      if (InFlight()) FinishInFlight(PublishTo{});  // no step since: every ego is there
       End();
     } catch (...) {
       std::string message;
       sum_.exit_code = ExitCodeFor(std::current_exception(), &message);
+      RecordInFlight();
       sum_.end_reason = "error";
       Finish("failed", message);
     }
@@ -146,6 +170,9 @@ class CoSimulation {
     const bool euler = world_->Option("step-method.ballistic") != "true";
     scenes_ = std::make_unique<SceneStage>(o_.scenes, dt_, euler, world_.get(), world_.get());
     estimate_ = std::make_unique<EstimateStage>(o_.params, o_.estimator);
+    // Under --act brake the closed loop needs step k's results before SUMO's step k+1.
+    sum_.pipelined = o_.run.pipeline && o_.act.act != Act::kBrake;
+    if (sum_.pipelined) ahead_ = std::make_unique<EstimateAhead>(estimate_.get());
     act_ = std::make_unique<ActStage>(o_.act, world_.get(), dt_);
     record_ = std::make_unique<RecordStage>(o_.record, db_.get());
     script_ = std::make_unique<EventScript>(o_.run.events, world_.get());
@@ -166,49 +193,92 @@ class CoSimulation {
       sum_.end_reason = end_option_ ? "end-option" : "sumo-end";
     } else if (world_->ExpectedObjects() <= 0) {
       sum_.end_reason = "sumo-end";
-    } else if (observe_->AllNamedEgosDone() && sum_.steps > 0) {
+    } else if (observe_->AllNamedEgosDone() && stepped_) {
       sum_.end_reason = "egos-arrived";
     }
     return !sum_.end_reason.empty();
   }
 
-  // One step: SUMO moves, then observe -> scenes -> estimate -> act -> record.
+  // One step: SUMO moves, then observe -> scenes -> estimate -> act -> record. Pipelined, the
+  // estimate runs on its own thread while SUMO makes the next step and the driver observes it;
+  // act and record of this step come after that (FinishInFlight), and the results are the same.
   void Step() {
     script_->ApplyDue(world_->Time(), dt_);
-    StepClock clock;
-    clock.t[0] = Clock::now();
     if (progress_) progress_->Hold();
+    StepDurations d;
+    Clock::time_point t = Clock::now();
     world_->Step();
     stepped_ = true;
-    clock.t[1] = Clock::now();
-    const Observation obs = observe_->Run();
-    t_ = obs.time_s;
+    d.sumo = Lap(&t);
+    Observation obs = observe_->Run();
     script_->Left(obs.arrived);
-    clock.t[2] = Clock::now();
-    const SceneBatch batch = scenes_->Run(obs);
-    clock.t[3] = Clock::now();
-    const std::vector<Result> results = estimate_->Run(batch);
-    clock.t[4] = Clock::now();
-    const ActOutcome acted = act_->Run(obs, batch, results);
-    clock.t[5] = Clock::now();
-    record_->Run(obs, batch, acted);
-    record_->Commit(TimeRow(clock, acted));
-    clock.t[6] = Clock::now();
-    clock.Into(&sum_.times);
-    Account(obs, acted);
-    last_egos_ = batch.scenes.size();
-    Progress(clock.t[6], last_egos_);
+    d.observe = Lap(&t);
+    if (InFlight()) FinishInFlight(AllBut(obs));  // the step before, published one step late
+    t = Clock::now();
+    SceneBatch batch = scenes_->Run(obs);
+    d.scenes = Lap(&t);
+    if (ahead_) {
+      flight_.obs = std::move(obs);
+      flight_.batch = std::move(batch);
+      flight_.d = d;
+      ahead_->Start(&flight_.batch);
+    } else {
+      const std::vector<Result> results = estimate_->Run(batch);
+      d.estimate = Lap(&t);
+      Complete(obs, batch, results, &d, PublishTo{});
+    }
+    Progress(Clock::now(), last_egos_);
   }
 
-  StepTimeRow TimeRow(const StepClock& clock, const ActOutcome& acted) {
+  bool InFlight() const { return ahead_ && ahead_->busy(); }
+
+  // The pipelined step's results, then its act and record.
+  void FinishInFlight(const PublishTo& publish) {
+    double wait_ms = 0.0;
+    const std::vector<Result> results = ahead_->Finish(&flight_.d.estimate, &wait_ms);
+    sum_.times.estimate_wait_s += 1e-3 * wait_ms;
+    Complete(flight_.obs, flight_.batch, results, &flight_.d, publish);
+  }
+
+  // A run that fails with an estimate under way still records that step (nothing computed is
+  // lost), publishing nothing: SUMO may be what failed.
+  void RecordInFlight() {
+    if (!InFlight() || !db_) return;
+    try {
+      PublishTo none;
+      none.any = false;
+      FinishInFlight(none);
+    } catch (...) {
+      // the estimate or the database failed as well: the first error is the one reported
+    }
+  }
+
+  // Act and record of one step whose results are in.
+  void Complete(const Observation& obs, const SceneBatch& batch, const std::vector<Result>& results,
+                StepDurations* d, const PublishTo& publish) {
+    t_ = obs.time_s;
+    Clock::time_point t = Clock::now();
+    const ActOutcome acted = act_->Run(obs, batch, results, publish);
+    d->act = Lap(&t);
+    record_->Run(obs, batch, acted);
+    d->record = Lap(&t);  // the row's own commit is not in it
+    record_->Commit(TimeRow(*d, acted));
+    d->record += Lap(&t);
+    d->Into(&sum_.times);
+    Account(obs, acted);
+    last_egos_ = batch.scenes.size();
+  }
+
+  StepTimeRow TimeRow(const StepDurations& d, const ActOutcome& acted) {
     StepTimeRow row;
     row.time_s = t_;
-    clock.Into(&row);
+    d.Into(&row);
     row.estimates = static_cast<int>(acted.steps.size());
     for (const EgoStep& s : acted.steps) row.shortcut_estimates += s.shortcut ? 1 : 0;
-    if (Seconds(clock.t[5] - last_rss_) >= 2.0 || sum_.steps == 0) {
+    const Clock::time_point now = Clock::now();
+    if (Seconds(now - last_rss_) >= 2.0 || sum_.steps == 0) {
       rss_mb_ = RssMb();
-      last_rss_ = clock.t[5];
+      last_rss_ = now;
     }
     row.rss_mb = rss_mb_;
     return row;
@@ -340,6 +410,14 @@ class CoSimulation {
   std::unique_ptr<ActStage> act_;
   std::unique_ptr<RecordStage> record_;
   std::unique_ptr<EventScript> script_;
+  // Pipelined: the step being estimated (alive until its act and record), and the thread that
+  // estimates it (declared after it: destroyed first, waiting for the estimate).
+  struct InFlightStep {
+    Observation obs;
+    SceneBatch batch;
+    StepDurations d;
+  } flight_;
+  std::unique_ptr<EstimateAhead> ahead_;
   double dt_{0.1}, t_{0.0}, end_{-1.0}, begin_s_{0.0};
   bool end_option_{false};
   std::unique_ptr<ProgressLine> progress_;  ///< on a terminal only

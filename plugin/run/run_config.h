@@ -25,6 +25,9 @@ struct RunConfig {
   double quiet_until_s{0.0};
   std::string category;
   bool progress{true};       ///< progress line on a terminal
+  /** Estimate step k while SUMO makes step k+1 (not under --act brake, whose commands need the
+   *  results first); false: --no-pipeline. */
+  bool pipeline{true};
   std::string command_line;  ///< for the runs table
 };
 

@@ -57,7 +57,9 @@ std::string SummaryJson(const RunSummary& s) {
     << ",\"ego_collisions\":" << s.ego_collisions << ",\"ego_events\":" << s.ego_events
     << ",\"time_s\":{\"sumo\":" << Num(s.times.sumo_s) << ",\"observe\":" << Num(s.times.observe_s)
     << ",\"scenes\":" << Num(s.times.scenes_s) << ",\"estimate\":" << Num(s.times.estimate_s)
-    << ",\"act\":" << Num(s.times.act_s) << ",\"record\":" << Num(s.times.record_s) << "}"
+    << ",\"act\":" << Num(s.times.act_s) << ",\"record\":" << Num(s.times.record_s)
+    << ",\"estimate_wait\":" << Num(s.times.estimate_wait_s) << "}"
+    << ",\"pipelined\":" << (s.pipelined ? "true" : "false")
     << ",\"wall_s\":" << Num(s.wall_s) << ",\"cpu_s\":" << Num(s.cpu_s)
     << ",\"estimates_per_s\":" << Num(rate)
     << ",\"estimator_ms_mean\":" << Num(s.estimates ? s.estimator_ms_sum / s.estimates : 0.0)

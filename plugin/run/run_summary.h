@@ -15,6 +15,9 @@ struct StageTimes {
   double estimate_s{0.0};  ///< the estimator
   double act_s{0.0};       ///< warnings, publishing, braking
   double record_s{0.0};    ///< the database (and scene files)
+  /** Pipelined: how long the loop waited for estimates after SUMO's next step and its
+   *  observation (the part of estimate_s that SUMO did not hide). */
+  double estimate_wait_s{0.0};
 };
 
 struct RunSummary {
@@ -45,6 +48,7 @@ struct RunSummary {
   long long ego_collisions{0};
   long long ego_events{0};
   StageTimes times;
+  bool pipelined{false};  ///< estimates overlapped SUMO's next step (RunConfig::pipeline)
   double wall_s{0.0};
   double cpu_s{0.0};  ///< user + system CPU time of the process, every thread
   double estimator_ms_sum{0.0};

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -116,10 +117,21 @@ class FakeSumoWorld final : public SumoWorld {
   std::vector<std::string> forgotten;
   /** Publish calls: ego -> (last p, warning). */
   std::map<std::string, std::pair<double, bool>> published;
+  /** Every Publish call in order: "<Time()> <ego> <p> <warning>", Time() being SUMO's clock
+   *  when it came (the stamp of the last step made + one step). */
+  std::shared_ptr<std::vector<std::string>> publish_log =
+      std::make_shared<std::vector<std::string>>();
+  /** Step() fails (as SUMO does when it cannot go on) when it would take the clock here. */
+  double fail_at_s{-1.0};
+  /** Vehicles that arrive (leave the network, reported in `arrived`) at the Step() that takes
+   *  the clock to this time. */
+  std::map<std::string, double> arrive_at;
 
   // ---- SumoWorld --------------------------------------------------------------------------
   std::string Version() override { return "fake SUMO"; }
   void Step() override {
+    if (fail_at_s >= 0.0 && now_ + dt_ >= fail_at_s - 1e-9)
+      throw SumoError("simulation step: the fake SUMO fails here");
     report_ = next_report;
     next_report = StepReport{};
     for (SumoObject& o : objects_) {
@@ -131,6 +143,12 @@ class FakeSumoWorld final : public SumoWorld {
       if (!o.lane.empty()) o.lane_position_m += o.speed_mps * dt_;
     }
     now_ += dt_;
+    for (const auto& [id, t] : arrive_at) {
+      if (Find(id) && now_ >= t - 1e-9) {
+        Remove(id);
+        report_.arrived.push_back(id);
+      }
+    }
   }
   double Time() override { return now_; }
   double StepLength() override { return dt_; }
@@ -176,7 +194,11 @@ class FakeSumoWorld final : public SumoWorld {
   }
   void Forget(const std::string& id) override { forgotten.push_back(id); }
   void Publish(const std::string& ego, double p, bool warning) override {
+    // As SUMO: a vehicle no longer in the simulation cannot be written to.
+    if (!Find(ego)) throw SumoError("publish criticality: Vehicle '" + ego + "' is not known");
     published[ego] = {p, warning};
+    publish_log->push_back(Fixed(now_) + " " + ego + " " + std::to_string(p) + " " +
+                          (warning ? "1" : "0"));
   }
   std::optional<LeaderReport> Leader(const std::string& vehicle, double) override {
     auto it = leaders.find(vehicle);

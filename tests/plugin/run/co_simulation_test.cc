@@ -11,7 +11,10 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "../fake_sumo_world.h"
 #include "../results_query.h"
@@ -191,6 +194,100 @@ TEST(CoSimulation, AScriptedEventForAVehicleNobodyDefinesIsBadInputAtItsTime) {
   // The steps before the event's time are kept.
   EXPECT_EQ(Query(db, "select status from runs"), "failed");
   EXPECT_EQ(Query(db, "select count(*) from steps"), "5");
+}
+
+// Every row the run recorded that does not measure time: the steps, warnings and ego events.
+std::string Recorded(const std::string& db) {
+  return Query(db,
+               "select group_concat(r, ';') from (select time_s || ' ' || ego || ' ' || "
+               "p_collision || ' ' || p_reference || ' ' || unavoidability || ' ' || objects || "
+               "' ' || objects_in_reach || ' ' || speed_mps || ' ' || ifnull(main_object, '-') "
+               "as r from steps order by time_s, ego)") +
+         "|" +
+         Query(db,
+               "select group_concat(r, ';') from (select ego || ' ' || start_s || ' ' || "
+               "ifnull(end_s, '-') || ' ' || peak_p || ' ' || ifnull(object, '-') as r from "
+               "warnings order by id)") +
+         "|" +
+         Query(db,
+               "select group_concat(r, ';') from (select time_s || ' ' || ego || ' ' || event as "
+               "r from ego_events order by rowid)");
+}
+
+// The close call, the ego leaving the network (arriving) at 1.0 s while it is warned.
+std::shared_ptr<std::vector<std::string>> g_published;
+std::unique_ptr<SumoWorld> CloseCallEgoArrives(const RunConfig& run) {
+  std::unique_ptr<SumoWorld> w = CloseCall(run);
+  auto* f = static_cast<FakeSumoWorld*>(w.get());
+  f->arrive_at["ego"] = 1.0;
+  g_published = f->publish_log;
+  return w;
+}
+
+// "<time> <rest>" -> {time, rest}.
+std::pair<double, std::string> TimeAndRest(const std::string& line) {
+  const size_t space = line.find(' ');
+  return {std::stod(line.substr(0, space)), line.substr(space + 1)};
+}
+
+TEST(CoSimulation, PipelinedTheRunRecordsTheSameAndPublishesOneStepLaterToEgosStillThere) {
+  std::string recorded[2];
+  std::vector<std::string> published[2];
+  RunSummary summary[2];
+  for (int pipelined = 0; pipelined < 2; ++pipelined) {
+    const std::string db = Output(pipelined ? "pipelined.sqlite" : "serial.sqlite");
+    DriverOptions o = Options(db);
+    o.run.pipeline = pipelined == 1;
+    ASSERT_EQ(RunDriver(o, &summary[pipelined], CloseCallEgoArrives), kExitDone)
+        << summary[pipelined].error;
+    EXPECT_EQ(summary[pipelined].pipelined, pipelined == 1);
+    EXPECT_EQ(summary[pipelined].end_reason, "egos-arrived");
+    recorded[pipelined] = Recorded(db);
+    published[pipelined] = *g_published;
+  }
+  EXPECT_EQ(recorded[1], recorded[0]);
+  EXPECT_EQ(summary[1].steps, summary[0].steps);
+  EXPECT_EQ(summary[1].estimates, summary[0].estimates);
+  EXPECT_EQ(summary[1].warnings, summary[0].warnings);
+  EXPECT_GE(summary[0].warnings, 1);
+  EXPECT_NE(recorded[0].find(" arrive"), std::string::npos) << recorded[0];
+  // Serial: each step's criticality reaches SUMO before its next step (the clock one step
+  // past the stamp); pipelined, after it (two steps past). The last one, for the step before
+  // the ego left, is not published: the ego is gone, and writing to it would fail.
+  ASSERT_GE(published[0].size(), 5u);
+  ASSERT_EQ(published[1].size(), published[0].size() - 1);
+  EXPECT_EQ(published[0].back().substr(published[0].back().size() - 2), " 1")
+      << "the ego left while warned: " << published[0].back();
+  for (size_t k = 0; k < published[1].size(); ++k) {
+    const auto [t_serial, serial] = TimeAndRest(published[0][k]);
+    const auto [t_pipelined, pipelined] = TimeAndRest(published[1][k]);
+    EXPECT_EQ(pipelined, serial) << k;
+    EXPECT_NEAR(t_pipelined - t_serial, 0.1, 1e-9) << k;
+  }
+}
+
+// The road, and a SUMO that fails when asked for the step to 0.6 s.
+std::unique_ptr<SumoWorld> RoadThatFails(const RunConfig& run) {
+  std::unique_ptr<SumoWorld> w = Road(run);
+  static_cast<FakeSumoWorld*>(w.get())->fail_at_s = 0.6;
+  return w;
+}
+
+TEST(CoSimulation, ASumoThatFailsWhileAStepIsEstimatedStillRecordsThatStep) {
+  std::string recorded[2];
+  for (int pipelined = 0; pipelined < 2; ++pipelined) {
+    const std::string db = Output(pipelined ? "fails_pipelined.sqlite" : "fails_serial.sqlite");
+    DriverOptions o = Options(db);
+    o.run.pipeline = pipelined == 1;
+    RunSummary summary;
+    EXPECT_EQ(RunDriver(o, &summary, RoadThatFails), kExitSumo);
+    EXPECT_NE(summary.error.find("fake SUMO fails"), std::string::npos) << summary.error;
+    EXPECT_EQ(Query(db, "select status from runs"), "failed");
+    // Steps 0.0 .. 0.4: the last one was being estimated when SUMO failed.
+    EXPECT_EQ(Query(db, "select count(*) || ' ' || max(time_s) from steps"), "5 0.4");
+    recorded[pipelined] = Recorded(db);
+  }
+  EXPECT_EQ(recorded[1], recorded[0]);
 }
 
 // Standard error on a pseudo terminal (raw: no line-ending translation) while it lives.
