@@ -4,7 +4,8 @@
 # time; CPU time, user + system over all threads, beside it: it is less disturbed by other
 # processes on a shared machine).
 #   A. one ego (car22, in the network from 13.2 s until it arrives at 416.6 s): plain sumo to
-#      the same end time vs the driver with the full hypothesis set and cheaper settings;
+#      the same end time vs the driver with the full hypothesis set and cheaper settings, the
+#      full set also with --no-pipeline (each step estimated before SUMO makes the next);
 #   B. every vehicle an ego (--all-vehicles) over 20 s of the busiest phase (300-320 s, about
 #      360 vehicles, from a SUMO state saved at 300 s): ego estimates per second of wall time,
 #      the share answered by the exact reach shortcut.
@@ -30,7 +31,7 @@ drive() {  # drive ARGS...: the driver's summary line
 }
 field() { python3 -c "import json,sys; d=json.loads(sys.argv[1]); print(eval(sys.argv[2], dict(d)))" "$1" "$2"; }
 ratio() { python3 -c "print(round($1 / $2, 1))"; }
-stages="'/'.join('%.1f' % time_s[k] for k in ['sumo','observe','scenes','estimate','act','record'])"
+stages="'/'.join('%.1f' % time_s[k] for k in ['sumo','observe','scenes','estimate','act','record','estimate_wait'])"
 
 full="--profiles 6 --own-lane-samples 3 --neighbour-lane-samples 2"
 cheap="--profiles 3 --own-lane-samples 1 --neighbour-lane-samples 1"
@@ -38,11 +39,13 @@ cheaper="$cheap --step 0.05"
 
 echo "## A. One ego (car22, 13.2-416.6 s), $runs runs, median by wall time"
 echo
-echo "| run | wall s | CPU s | x plain (wall) | x plain (CPU) | estimates | shortcut share | estimator ms | stages s: sumo/observe/scenes/estimate/act/record | max RSS MB |"
+echo "| run | wall s | CPU s | x plain (wall) | x plain (CPU) | estimates | shortcut share | estimator ms | stages s: sumo/observe/scenes/estimate/act/record/wait | max RSS MB |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
 read -r pw pc < <(for r in $(seq "$runs"); do plain --end 416.7; done | median)
 echo "| plain sumo --end 416.7 | $pw | $pc | 1.0 | 1.0 | | | | | |"
-for setting in "full:$full --threads 2" "full, 1 thread:$full --threads 1" \
+for setting in "full:$full --threads 2" "full, not pipelined:$full --threads 2 --no-pipeline" \
+               "full, 1 thread:$full --threads 1" \
+               "full, 1 thread, not pipelined:$full --threads 1 --no-pipeline" \
                "cheap:$cheap --threads 1" "cheaper:$cheaper --threads 1"; do
   name=${setting%%:*} args=${setting#*:}
   for r in $(seq "$runs"); do drive --ego car22 $args; done > "$work/one.txt"
@@ -61,11 +64,12 @@ echo
 sumo -c city.sumocfg "${sumo_opts[@]}" --end 300.1 --save-state.times 300 \
   --save-state.files "$work/state300.xml" >/dev/null 2>&1
 state=(--load-state "$work/state300.xml" --begin 300 --end 320)
-echo "| run | wall s | CPU s | x plain (wall) | estimates | estimates/s | shortcut share | objects out of reach / estimate | stages s: sumo/observe/scenes/estimate/act/record | max RSS MB |"
+echo "| run | wall s | CPU s | x plain (wall) | estimates | estimates/s | shortcut share | objects out of reach / estimate | stages s: sumo/observe/scenes/estimate/act/record/wait | max RSS MB |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
 read -r pw pc < <(for r in $(seq "$runs"); do plain "${state[@]}"; done | median)
 echo "| plain sumo | $pw | $pc | 1.0 | | | | | | |"
-for setting in "full:$full" "cheap:$cheap" "cheaper:$cheaper"; do
+for setting in "full:$full" "full, not pipelined:$full --no-pipeline" "cheap:$cheap" \
+               "cheaper:$cheaper"; do
   name=${setting%%:*} args=${setting#*:}
   for r in $(seq "$runs"); do drive --all-vehicles $args -- "${state[@]}"; done > "$work/all.txt"
   w=$(while read -r l; do field "$l" wall_s; done < "$work/all.txt" | median)
