@@ -47,8 +47,8 @@ ActStage::ActStage(const ActConfig& config, SumoWorld* world, double step_s)
 void ActStage::Leaving(const Observation& obs, ActOutcome* out) {
   for (const EgoEvent& e : obs.ego_events) {
     if (e.kind == EgoEventKind::kTeleportEnd) closed_loop_.TeleportEnded(e.ego);
+    if (!LeavesTheRoad(e.kind)) continue;
     const bool teleport = e.kind == EgoEventKind::kTeleportStart;
-    if (e.kind != EgoEventKind::kArrive && e.kind != EgoEventKind::kVanish && !teleport) continue;
     if (episodes_.Leave(e.ego)) {
       WarningEvent w;
       w.ego = e.ego;

@@ -14,6 +14,12 @@ namespace criticality::plugin {
 enum class EgoEventKind { kDepart, kArrive, kTeleportStart, kTeleportEnd, kVanish };
 /** depart, arrive, teleport-start, teleport-end, vanish (the ego_events table's `event`). */
 const char* EgoEventName(EgoEventKind kind);
+/** The ego leaves the road with this event (it arrives, vanishes or begins a teleport): its
+ *  warning episode and engagement end, and nothing is written to it in SUMO any more. */
+inline bool LeavesTheRoad(EgoEventKind kind) {
+  return kind == EgoEventKind::kArrive || kind == EgoEventKind::kVanish ||
+         kind == EgoEventKind::kTeleportStart;
+}
 
 struct EgoEvent {
   std::string ego;

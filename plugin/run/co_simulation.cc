@@ -118,8 +118,7 @@ PublishTo AllBut(const Observation& next) {
   PublishTo to;
   to.gone.insert(next.left.begin(), next.left.end());
   for (const EgoEvent& e : next.ego_events) {
-    if (e.kind != EgoEventKind::kDepart && e.kind != EgoEventKind::kTeleportEnd)
-      to.gone.insert(e.ego);
+    if (LeavesTheRoad(e.kind)) to.gone.insert(e.ego);
   }
   return to;
 }
