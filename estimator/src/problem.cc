@@ -821,16 +821,21 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     h.n_profiles = params.profiles;
     h.n_paths = params.pedestrian_headings;
     h.profile_start = h.accel0;
+    // The reference: the current acceleration, or a lower expected one (a person stopping
+    // where it must wait; Params::expected_accel_reference).
+    double a_ref = h.accel0;
+    if (params.expected_accel_reference && ped.state.expected_accel_mps2)
+      a_ref = std::fmin(a_ref, *ped.state.expected_accel_mps2);
     std::vector<double> a;
     const int reference = ProfileAccelerations(
-        h.n_profiles, params.pedestrian_accel_min_mps2, params.pedestrian_accel_max_mps2, h.accel0,
+        h.n_profiles, params.pedestrian_accel_min_mps2, params.pedestrian_accel_max_mps2, a_ref,
         params.profiles_include_current_accel, /*equally_spaced=*/true, &a);
     const double scale =
         params.accel_score_scale * std::fmax(std::fabs(params.pedestrian_accel_min_mps2),
                                              std::fabs(params.pedestrian_accel_max_mps2));
     std::vector<ProfileScore> profiles(h.n_profiles);
     const double current =
-        core::Clamp(h.accel0, params.pedestrian_accel_min_mps2, params.pedestrian_accel_max_mps2);
+        core::Clamp(a_ref, params.pedestrian_accel_min_mps2, params.pedestrian_accel_max_mps2);
     for (int k = 0; k < h.n_profiles; ++k) {
       h.profile_target[k] = a[k];
       if (Naturalistic(params)) {

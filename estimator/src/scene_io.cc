@@ -165,6 +165,8 @@ void WriteScene(std::ostream& out, const Scene& scene) {
     out << "pedestrian " << p.id;
     WriteState(out, p.state);
     out << ' ' << p.length_m << ' ' << p.width_m << '\n';
+    if (p.state.expected_accel_mps2)
+      out << "expected-accel " << *p.state.expected_accel_mps2 << '\n';
     if (p.stays_on_footway) out << "footway\n";
   }
 }
@@ -172,7 +174,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
 Scene ReadScene(std::istream& in, const std::string& source) {
   Scene scene;
   LaneSet* lanes = nullptr;
-  ObjectState* state = nullptr;  // of the last ego or vehicle, for 'expected-accel', 'route-end'
+  ObjectState* state = nullptr;  // of the last ego, vehicle or pedestrian: 'expected-accel', ...
   VehicleType* type = nullptr;   // of the last ego or vehicle, for 'type'
   Vehicle* vehicle = nullptr;    // the last vehicle read, for its 'stop' and 'carriage' lines
   Pedestrian* pedestrian = nullptr;  // the last pedestrian read, for its 'footway' line
@@ -231,7 +233,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       p.width_m = r.Num();
       scene.pedestrians.push_back(std::move(p));
       lanes = nullptr;
-      state = nullptr;
+      state = &scene.pedestrians.back().state;  // for 'expected-accel' (not 'route-end')
       type = nullptr;
       vehicle = nullptr;
       pedestrian = &scene.pedestrians.back();
@@ -284,10 +286,13 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       if (!pedestrian) throw InputError(r.where + ": 'footway' must follow a pedestrian");
       pedestrian->stays_on_footway = true;
     } else if (kind == "route-end") {
-      if (!state) throw InputError(r.where + ": 'route-end' must follow an ego or a vehicle");
+      if (!state || pedestrian)
+        throw InputError(r.where + ": 'route-end' must follow an ego or a vehicle");
       state->route_end_m = r.Num();
     } else if (kind == "expected-accel") {
-      if (!state) throw InputError(r.where + ": 'expected-accel' must follow an ego or a vehicle");
+      if (!state)
+        throw InputError(r.where +
+                         ": 'expected-accel' must follow an ego, a vehicle or a pedestrian");
       state->expected_accel_mps2 = r.Num();
     } else if (kind == "stop") {
       if (!vehicle) throw InputError(r.where + ": 'stop' must follow a vehicle");

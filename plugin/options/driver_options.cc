@@ -174,6 +174,7 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_road_model) p.road_model = false;
   if (raw.no_car_following) p.expected_accel_reference = false;
   if (raw.no_crossing_obligations) o->scenes.crossing_obligations = false;
+  if (raw.no_crossing_stops) o->scenes.crossing_stops = false;
   o->params = p;
   if (o->estimator.threads < 0)
     Bad("--threads " + std::to_string(o->estimator.threads) + ": must be >= 0 (0: all cores)");

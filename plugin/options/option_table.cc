@@ -139,6 +139,10 @@ void OptionTable::Estimator(DriverOptions* o) {
       "while a vehicle approaches) is not read as waiting on the footway; the rule reads the "
       "person's next edge, which only the simulator knows (plugin/README.md, \"Pedestrians "
       "on the footway\")")(
+      "no-crossing-stops", po::bool_switch(&raw.no_crossing_stops),
+      "ablation (ours): such a waiting pedestrian keeps its speed in its reference hypothesis "
+      "instead of stopping where the crossing begins, as SUMO's persons do (simulator "
+      "knowledge too: plugin/README.md, \"Pedestrians on the footway\")")(
       "no-car-following", po::bool_switch(&raw.no_car_following),
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(
@@ -147,8 +151,8 @@ void OptionTable::Estimator(DriverOptions* o) {
       "no-pipeline", po::bool_switch(&raw.no_pipeline),
       "estimate each step before SUMO makes the next; by default, under --act none and warn, "
       "step k is estimated on a thread of its own while SUMO makes step k+1 (the same results, "
-      "the criticality published to SUMO one step later; --act brake always waits)")("profiles", Value(&p.profiles),
-                           "acceleration/slip profiles per object (paper: 6 or 5)")(
+      "the criticality published to SUMO one step later; --act brake always waits)")(
+      "profiles", Value(&p.profiles), "acceleration/slip profiles per object (paper: 6 or 5)")(
       "own-lane-samples", Value(&p.own_lane_samples),
       "lateral path samples across the own lane (paper: 3)")(
       "neighbour-lane-samples", Value(&p.neighbour_lane_samples),

@@ -1,6 +1,9 @@
 #include "plugin/scenes/footway.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <limits>
 
 namespace criticality::plugin {
 namespace {
@@ -41,6 +44,19 @@ bool WaitsAtCrossing(const std::vector<LaneLink>& links, const std::string& cros
     return no_priority && l.has_foe;
   }
   return false;
+}
+
+double DistanceToCrossing(const LaneInfo& crossing, double x_m, double y_m) {
+  if (crossing.shape.empty()) return std::numeric_limits<double>::infinity();
+  const Point2& a = crossing.shape.front();
+  const Point2& b = crossing.shape.back();
+  return std::min(std::hypot(a.x - x_m, a.y - y_m), std::hypot(b.x - x_m, b.y - y_m));
+}
+
+double CrossingStopDecel(double speed_mps, double distance_m) {
+  if (!(speed_mps > 0.0) || !(distance_m >= 0.0) || std::isinf(distance_m)) return 0.0;
+  if (distance_m <= 0.0) return -kCrossingStopMaxDecel;
+  return -std::min(speed_mps * speed_mps / (2.0 * distance_m), kCrossingStopMaxDecel);
 }
 
 }  // namespace criticality::plugin

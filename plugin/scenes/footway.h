@@ -33,4 +33,16 @@ bool StaysOnFootway(WalkingPlace here, WalkingPlace next);
  *  until it may cross. False when no link leads into the crossing. */
 bool WaitsAtCrossing(const std::vector<LaneLink>& links, const std::string& crossing_lane);
 
+/** Where a person waiting for `crossing` stops: the distance (m) from (x, y) to the nearer end
+ *  of the crossing lane's centre line, where SUMO's walk onto it begins. Infinite for a
+ *  crossing without a shape. */
+double DistanceToCrossing(const LaneInfo& crossing, double x_m, double y_m);
+
+/** The deceleration (m/s^2, <= 0) that stops a person walking at `speed_mps` within
+ *  `distance_m`: -v^2 / (2 d), at most kCrossingStopMaxDecel (a person that is already there,
+ *  d = 0, gets that); 0 for a person standing or with no distance known (infinite). */
+double CrossingStopDecel(double speed_mps, double distance_m);
+/** How hard a walking person stops at most (m/s^2): within one stride from walking speed. */
+constexpr double kCrossingStopMaxDecel = 6.0;
+
 }  // namespace criticality::plugin

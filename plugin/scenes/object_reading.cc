@@ -81,8 +81,15 @@ ObjectSnapshot ObjectReader::Person(const SumoObject& o) {
   // About to cross where it may not yet: it waits on the footway
   // (SceneConfig::crossing_obligations).
   if (!s.stays_on_footway && config_.crossing_obligations && here == WalkingPlace::kWalkingArea &&
-      next == WalkingPlace::kCrossing)
-    s.stays_on_footway = WaitsAtCrossing(network_->LinksNow(s.lane), o.next_edge + "_0");
+      next == WalkingPlace::kCrossing) {
+    const std::string crossing = o.next_edge + "_0";
+    s.stays_on_footway = WaitsAtCrossing(network_->LinksNow(s.lane), crossing);
+    // It stops where the crossing begins, as SUMO's persons do: its reference hypothesis
+    // decelerates to that point (SceneConfig::crossing_stops).
+    if (s.stays_on_footway && config_.crossing_stops && s.state.speed_mps > 0.0)
+      s.state.expected_accel_mps2 = CrossingStopDecel(
+          s.state.speed_mps, DistanceToCrossing(network_->Lane(crossing), o.x_m, o.y_m));
+  }
   return s;
 }
 

@@ -33,6 +33,10 @@ struct SceneConfig {
    *  edge, which only the simulator knows (off with --observable-only, which does not read it,
    *  and with --no-crossing-obligations). */
   bool crossing_obligations{true};
+  /** Such a waiting person is expected to stop where the crossing begins, as SUMO's persons do:
+   *  its expected acceleration (its reference hypothesis) is the deceleration that stops it
+   *  there (CrossingStopDecel). Needs crossing_obligations; --no-crossing-stops turns it off. */
+  bool crossing_stops{true};
 };
 
 /** How far a vehicle can get within the horizon, at least 10 m: v T + a_max T^2 / 2 (its lane

@@ -42,6 +42,22 @@ TEST(SceneIo, ExpectedAccelerationsRoundTrip) {
   EXPECT_EQ(back.vehicles[1].state.expected_accel_mps2, std::optional<double>(-4.5));
   EXPECT_FALSE(back.vehicles[2].state.expected_accel_mps2.has_value());
   EXPECT_EQ(back.vehicles[1].lanes.has_value(), scene.vehicles[1].lanes.has_value());
+  // A pedestrian's (a person stopping where it must wait), after its footway flag's peer.
+  Pedestrian walker;
+  walker.id = "w";
+  walker.state.speed_mps = 1.2;
+  walker.state.expected_accel_mps2 = -2.4;
+  walker.stays_on_footway = true;
+  Pedestrian standing;
+  standing.id = "s";
+  scene.pedestrians = {walker, standing};
+  std::stringstream again;
+  WriteScene(again, scene);
+  const Scene peds = ReadScene(again);
+  ASSERT_EQ(peds.pedestrians.size(), 2u);
+  EXPECT_EQ(peds.pedestrians[0].state.expected_accel_mps2, std::optional<double>(-2.4));
+  EXPECT_TRUE(peds.pedestrians[0].stays_on_footway);
+  EXPECT_FALSE(peds.pedestrians[1].state.expected_accel_mps2.has_value());
 }
 
 TEST(SceneIo, FootwayFlagsRoundTrip) {
@@ -238,8 +254,13 @@ TEST(SceneIo, BadFilesNameTheLine) {
                   "1 1 1 2 1\n")
                 .find("f.scene:3"),
             std::string::npos);
-  EXPECT_NE(error("criticality-scene 1\npedestrian p 0 0 0 1 0 0 0 .5 .5\nexpected-accel -1\n")
-                .find("f.scene:3: 'expected-accel' must follow"),
+  // A pedestrian may have an expected acceleration (a person stopping where it must wait),
+  // not a route end; before any object neither has anything to follow.
+  EXPECT_NE(error("criticality-scene 1\nexpected-accel -1\n")
+                .find("f.scene:2: 'expected-accel' must follow"),
+            std::string::npos);
+  EXPECT_NE(error("criticality-scene 1\npedestrian p 0 0 0 1 0 0 0 .5 .5\nroute-end 3\n")
+                .find("f.scene:3: 'route-end' must follow"),
             std::string::npos);
   EXPECT_NE(error("criticality-scene 1\nego e 0 0 0 1 0 0 0 4.5 1.8 -\nfootway\n")
                 .find("f.scene:3: 'footway' must follow a pedestrian"),

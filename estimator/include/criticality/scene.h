@@ -65,7 +65,8 @@ struct ObjectState {
    *  something that asks for it: a slower vehicle ahead in its lane (car following), a stop line
    *  it must stop at. When set and below accel_mps2, it is the reference ("most likely")
    *  hypothesis' acceleration and the centre of the acceleration scores instead of the current
-   *  acceleration (Params::expected_accel_reference). Vehicles and the ego only. */
+   *  acceleration (Params::expected_accel_reference). Vehicles, pedestrians (a person stopping
+   *  where it must wait) and the ego. */
   std::optional<double> expected_accel_mps2;
   /** How far ahead along its way the vehicle leaves the scene, when the caller knows: the end
    *  of its route in a traffic simulation, where SUMO removes it. From there on its hypotheses

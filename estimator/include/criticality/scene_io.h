@@ -22,8 +22,9 @@
  *  given, absent: a car without values) to the ego or vehicle line before it; `carriage` lines
  *  (Vehicle::carriages, front to back) to the vehicle line before them; a
  *  `footway` line (Pedestrian::stays_on_footway) to the pedestrian line before it; an
- *  `expected-accel` line sets ObjectState::expected_accel_mps2 of the ego or vehicle line
- *  before it (absent: not set), a `route-end` line its ObjectState::route_end_m. A lane
+ *  `expected-accel` line sets ObjectState::expected_accel_mps2 of the ego, vehicle or
+ *  pedestrian line before it (absent: not set), a `route-end` line the ObjectState::route_end_m
+ *  of the ego or vehicle line before it. A lane
  *  line ending in `straight-to-middle` sets Lane::straight_to_middle. An `euler-update-step`
  *  line (anywhere after the header; absent: 0) sets Scene::euler_update_step_s. Version 1
  *  throughout: `type` and `carriage` lines were added to it, and a file without them is the

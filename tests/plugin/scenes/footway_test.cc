@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 namespace criticality::plugin {
 namespace {
 
@@ -55,6 +58,24 @@ TEST(Footway, AWalkerWaitsAtACrossingItMayNotEnterYet) {
   // Only the link into the crossing counts; none: no obligation known.
   EXPECT_FALSE(WaitsAtCrossing({LaneLink{":J_w1_0", "", "r", true, "s"}}, crossing));
   EXPECT_FALSE(WaitsAtCrossing({}, crossing));
+}
+
+TEST(Footway, AWaitingWalkerStopsWhereItsCrossingBegins) {
+  // The crossing runs from (10, 0) to (10, 8); a walk onto it begins at the nearer end.
+  LaneInfo crossing;
+  crossing.shape = {{10.0, 0.0}, {10.0, 8.0}};
+  EXPECT_DOUBLE_EQ(DistanceToCrossing(crossing, 7.0, -4.0), 5.0);
+  EXPECT_DOUBLE_EQ(DistanceToCrossing(crossing, 10.0, 11.0), 3.0);  // from the other side
+  EXPECT_TRUE(std::isinf(DistanceToCrossing(LaneInfo{}, 0.0, 0.0)));
+  // v^2 / (2 d): 1.2 m/s within 0.3 m.
+  EXPECT_DOUBLE_EQ(CrossingStopDecel(1.2, 0.3), -2.4);
+  EXPECT_DOUBLE_EQ(CrossingStopDecel(1.0, 5.0), -0.1);
+  // Already there, or nearer than its hardest stop: the hardest stop.
+  EXPECT_DOUBLE_EQ(CrossingStopDecel(1.2, 0.0), -kCrossingStopMaxDecel);
+  EXPECT_DOUBLE_EQ(CrossingStopDecel(2.0, 0.1), -kCrossingStopMaxDecel);
+  // Standing, or nowhere known to stop: nothing expected.
+  EXPECT_DOUBLE_EQ(CrossingStopDecel(0.0, 0.3), 0.0);
+  EXPECT_DOUBLE_EQ(CrossingStopDecel(1.2, std::numeric_limits<double>::infinity()), 0.0);
 }
 
 }  // namespace

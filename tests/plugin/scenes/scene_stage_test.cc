@@ -194,9 +194,20 @@ TEST(SceneStage, AWalkerWaitingAtACrossingItMayNotEnterKeepsToTheFootway) {
   ASSERT_EQ(s.pedestrians.size(), 2u);  // ID order: goes, waits
   EXPECT_FALSE(s.pedestrians[0].stays_on_footway);
   EXPECT_TRUE(s.pedestrians[1].stays_on_footway);
+  // The waiting walker is expected to stop where its crossing begins, (200, -3), 4 m ahead:
+  // 1 m/s within 4 m is 1 / 8 m/s^2. The one that may cross is not.
+  ASSERT_TRUE(s.pedestrians[1].state.expected_accel_mps2.has_value());
+  EXPECT_NEAR(*s.pedestrians[1].state.expected_accel_mps2, -1.0 / 8.0, 1e-9);
+  EXPECT_FALSE(s.pedestrians[0].state.expected_accel_mps2.has_value());
+  SceneConfig no_stops;
+  no_stops.crossing_stops = false;  // --no-crossing-stops: waits, but no stop expected
+  const Scene n = read(no_stops);
+  EXPECT_TRUE(n.pedestrians[1].stays_on_footway);
+  EXPECT_FALSE(n.pedestrians[1].state.expected_accel_mps2.has_value());
   SceneConfig off;
-  off.crossing_obligations = false;  // --no-crossing-obligations
+  off.crossing_obligations = false;  // --no-crossing-obligations: neither
   EXPECT_FALSE(read(off).pedestrians[1].stays_on_footway);
+  EXPECT_FALSE(read(off).pedestrians[1].state.expected_accel_mps2.has_value());
 }
 
 TEST(SceneStage, YawRateIsTheHeadingChangeOrWithLongStepsTheLanes) {
