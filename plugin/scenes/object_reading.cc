@@ -86,9 +86,11 @@ ObjectSnapshot ObjectReader::Person(const SumoObject& o) {
     s.stays_on_footway = WaitsAtCrossing(network_->LinksNow(s.lane), crossing);
     // It stops where the crossing begins, as SUMO's persons do: its reference hypothesis
     // decelerates to that point (SceneConfig::crossing_stops).
-    if (s.stays_on_footway && config_.crossing_stops && s.state.speed_mps > 0.0)
-      s.state.expected_accel_mps2 = CrossingStopDecel(
+    if (s.stays_on_footway && config_.crossing_stops) {
+      const double stop = CrossingStopDecel(
           s.state.speed_mps, DistanceToCrossing(network_->Lane(crossing), o.x_m, o.y_m));
+      if (stop < 0.0) s.state.expected_accel_mps2 = stop;  // none for a person standing
+    }
   }
   return s;
 }
