@@ -10,8 +10,9 @@
 namespace criticality::plugin {
 namespace {
 
-// The estimator's footprint of an object: a vehicle's length x width, a person's default
-// pedestrian square.
+// An object's footprint where SUMO places it: a vehicle's box from its front to its back
+// (BodyLengthOf: SUMO's box, shorter than the vehicle in a turn) x its width, a person the
+// estimator's default pedestrian square.
 struct Body {
   Pose2 centre;
   double half_length{0.0}, half_width{0.0};
@@ -21,7 +22,7 @@ Body BodyOf(const SumoObject& o) {
   const Pedestrian walker;
   Body b;
   b.centre = CentreOf(o);
-  b.half_length = 0.5 * (o.person ? walker.length_m : o.length_m);
+  b.half_length = 0.5 * (o.person ? walker.length_m : BodyLengthOf(o));
   b.half_width = 0.5 * (o.person ? walker.width_m : o.width_m);
   return b;
 }

@@ -6,6 +6,7 @@
 
 #include "plugin/network/polyline.h"
 #include "plugin/observe/neighbour_grid.h"
+#include "plugin/observe/vehicle_bodies.h"
 
 namespace criticality::plugin {
 namespace {
@@ -237,6 +238,7 @@ void ObserveStage::Read(const std::vector<std::string>& driving,
   scope.context_range_m = config_.range_m + kReadMarginM;
   scope.whole_network = config_.all_vehicles;
   obs->surroundings = world_->Observe(driving, scope);
+  MeasureBodies(*world_, &obs->surroundings);  // before anything places a body
   if (obs->surroundings.whole_network) FindNeighbours(scope.context_range_m, &obs->surroundings);
   if (config_.all_vehicles) return;
   std::set<std::string> observed;

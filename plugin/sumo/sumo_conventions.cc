@@ -19,9 +19,13 @@ Pose2 FrontBumperToCentre(double front_x, double front_y, double angle_deg, doub
   return Pose2{front_x - 0.5 * length * std::cos(yaw), front_y - 0.5 * length * std::sin(yaw), yaw};
 }
 
+double BodyLengthOf(const SumoObject& o) {
+  return o.body_length_m > 0.0 ? o.body_length_m : o.length_m;
+}
+
 Pose2 CentreOf(const SumoObject& o) {
   if (o.person) return Pose2{o.x_m, o.y_m, NavigationDegToYaw(o.angle_deg)};
-  return FrontBumperToCentre(o.x_m, o.y_m, o.angle_deg, o.length_m);
+  return FrontBumperToCentre(o.x_m, o.y_m, o.angle_deg, BodyLengthOf(o));
 }
 
 }  // namespace criticality::plugin

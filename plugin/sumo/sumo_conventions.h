@@ -16,7 +16,12 @@ double YawToNavigationDeg(double yaw);
 /** Front-bumper position + navigation angle + length -> centre pose with math yaw. */
 Pose2 FrontBumperToCentre(double front_x, double front_y, double angle_deg, double length);
 
-/** An object's centre pose: a vehicle's from its front bumper, a person's position as it is. */
+/** The length of a vehicle's box: its body's chord where measured (SumoObject::body_length_m),
+ *  else its length. */
+double BodyLengthOf(const SumoObject& o);
+
+/** An object's centre pose: a vehicle's the centre of its box (BodyLengthOf behind its front
+ *  bumper), a person's position as it is. */
 Pose2 CentreOf(const SumoObject& o);
 
 }  // namespace criticality::plugin

@@ -22,6 +22,11 @@ struct SumoObject {
   // ---- vehicles ----
   double accel_mps2{0.0};
   double length_m{0.0};
+  /** The length of SUMO's box of the body (MSVehicle::getBoundingBox, along its angle): from
+   *  its front to its back on the lanes it came by, shorter than length_m while a turn bends
+   *  the way between them; 0 when not measured (BodyLengthOf: then length_m). Measured by the
+   *  observe stage (plugin/observe/vehicle_bodies.h). */
+  double body_length_m{0.0};
   double width_m{0.0};
   double height_m{0.0};  ///< <= 0: unknown
   double decel_mps2{0.0};  ///< the type's normal maximum deceleration (SUMO's decel)

@@ -49,6 +49,24 @@ class FakeSumoWorld final : public SumoWorld {
                bool has_foe = false, std::string direction = "s") {
     links_[from_lane].push_back(LaneLink{to_lane, "", state, has_foe, direction});
   }
+  /** A single-lane edge (`edge`_0) along `shape`, e.g. a junction's curved internal lane. */
+  void AddLaneShape(const std::string& edge, std::vector<Point2> shape, double width = 3.2) {
+    LaneInfo l;
+    for (size_t k = 1; k < shape.size(); ++k)
+      l.length_m += std::hypot(shape[k].x - shape[k - 1].x, shape[k].y - shape[k - 1].y);
+    l.shape = std::move(shape);
+    l.width_m = width;
+    l.edge = edge;
+    lanes_[edge + "_0"] = l;
+    lane_count_[edge] = 1;
+    edges_.push_back(edge);
+  }
+  /** A link from `from_lane` to `to_lane` through a junction's internal lane `via` (SUMO's
+   *  TraCIConnection: its approached lane and its via lane). */
+  void AddLinkVia(const std::string& from_lane, const std::string& to_lane, const std::string& via,
+                  std::string direction = "s") {
+    links_[from_lane].push_back(LaneLink{to_lane, via, "M", false, std::move(direction)});
+  }
   void SetAllowed(const std::string& lane, std::vector<std::string> classes) {
     allowed_[lane] = std::move(classes);
   }

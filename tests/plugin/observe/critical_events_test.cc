@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "criticality/geometry.h"
 #include "plugin/sumo/sumo_conventions.h"
 
 namespace criticality::plugin {
@@ -83,6 +84,22 @@ TEST(CriticalEvents, OverlapUsesTheHeadings) {
   CriticalEventDetector e;
   EXPECT_EQ(Describe(e.Run(0.0, Around({Vehicle("ego", 0, 0), Vehicle("v", 4.0, 0, 0.0)}))),
             "ego:overlap:v");
+}
+
+TEST(CriticalEvents, AVehicleIsSumosBoxFromItsFrontToItsBack) {
+  // A 7.1 m truck in a U-turn: its front at the origin, SUMO's angle pointing west from its
+  // back 4 m east of it (body_length_m, measured by the observe stage). A car 6 m east stands
+  // where a 7.1 m box along that angle would reach, but beyond the truck's back.
+  SumoObject truck = Vehicle("truck", 0, 0, kPi);
+  truck.length_m = 7.1;
+  truck.x_m = 0.0;
+  truck.y_m = 0.0;
+  truck.body_length_m = 4.0;
+  const SumoObject car = Vehicle("car", 6.0 + 2.25 - 0.3, 0, 0.0);  // its rear 6 - 0.3 m east
+  CriticalEventDetector d;
+  EXPECT_EQ(Describe(d.Run(0.0, Around({truck, car}))), "");
+  truck.body_length_m = 0.0;  // not measured: the truck's length
+  EXPECT_EQ(Describe(d.Run(0.1, Around({truck, car}))), "truck:overlap:car");
 }
 
 TEST(CriticalEvents, HardBrakingIsBeyondTheVehiclesOwnDecelOncePerSpell) {
