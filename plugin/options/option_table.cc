@@ -143,6 +143,11 @@ void OptionTable::Estimator(DriverOptions* o) {
       "ablation (ours): such a waiting pedestrian keeps its speed in its reference hypothesis "
       "instead of stopping where the crossing begins, as SUMO's persons do (simulator "
       "knowledge too: plugin/README.md, \"Pedestrians on the footway\")")(
+      "bent-bodies", po::bool_switch(&raw.bent_bodies),
+      "experimental (ours, off by default: it did not help the held-out networks, "
+      "bench/RESULTS.md): a vehicle whose way from back to front a turn bends (a bus or truck "
+      "in a junction turn) is a chain of boxes along that way, not one box along SUMO's angle "
+      "(plugin/README.md, \"Bodies in a turn\")")(
       "no-car-following", po::bool_switch(&raw.no_car_following),
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(

@@ -4,46 +4,12 @@
 #include <cmath>
 
 #include "plugin/network/polyline.h"
+#include "plugin/network/way_behind.h"
 
 namespace criticality::plugin {
 namespace {
 
 constexpr double kMinBoxM = 0.5;
-
-// Appends `shape` before `line`, dropping a repeated joint point.
-void Prepend(const std::vector<Point2>& shape, std::vector<Point2>* line) {
-  std::vector<Point2> joined = shape;
-  for (const Point2& p : *line) {
-    if (joined.empty() || std::hypot(p.x - joined.back().x, p.y - joined.back().y) > 1e-3)
-      joined.push_back(p);
-  }
-  line->swap(joined);
-}
-
-// The lane before `lane` on the vehicle's way and the internal lane between them ("" when
-// none); "" when it cannot be found (the route starts here).
-std::string PreviousLane(const std::string& lane, const std::vector<std::string>& route,
-                         int* route_index, RoadNetwork* network, std::string* via) {
-  via->clear();
-  std::string edge;
-  if (IsInternal(lane)) {
-    if (*route_index < 0 || *route_index >= static_cast<int>(route.size())) return "";
-    edge = route[*route_index];  // on a junction the route index is the edge before it
-  } else {
-    if (*route_index <= 0 || *route_index > static_cast<int>(route.size())) return "";
-    edge = route[--*route_index];
-  }
-  for (int k = 0; k < network->LaneCount(edge); ++k) {
-    const std::string candidate = edge + "_" + std::to_string(k);
-    for (const LaneLink& link : network->Links(candidate)) {
-      if (IsInternal(lane) ? link.internal == lane : link.lane == lane) {
-        if (!IsInternal(lane)) *via = link.internal;
-        return candidate;
-      }
-    }
-  }
-  return "";
-}
 
 }  // namespace
 
@@ -76,6 +42,20 @@ BodyPlan PlanBody(double length_m, double /*width_m*/, const VehicleTypeReport& 
   return plan;
 }
 
+bool IsBent(double length_m, double box_length_m) {
+  return length_m - box_length_m >= kBentBodyToleranceM;
+}
+
+BodyPlan PlanBentBody(double length_m) {
+  BodyPlan plan;
+  plan.gap_m = 0.0;
+  const int n = std::max(2, static_cast<int>(std::ceil(length_m / kBentBoxLengthM)));
+  const double box = length_m / n;
+  plan.head_length_m = box;
+  plan.carriage_lengths_m.assign(n - 1, box);
+  return plan;
+}
+
 std::vector<Carriage> PlaceCarriages(const BodyPlan& plan, const VehicleOnLane& v, double width_m,
                                      const SceneConfig& config, double step_s,
                                      RoadNetwork* network) {
@@ -85,22 +65,10 @@ std::vector<Carriage> PlaceCarriages(const BodyPlan& plan, const VehicleOnLane& 
   for (double l : plan.carriage_lengths_m) body += plan.gap_m + l;
   // The centre line from far enough behind the front to the front and on along the route.
   LaneCorridor c;
-  c.centre = network->Lane(v.lane).shape;
+  const WayLine way = LineBehind(*network, v.lane, v.lane_position_m, body, v.route, v.route_index);
+  c.centre = way.line;
   c.width_m = network->Lane(v.lane).width_m;
-  double front = v.lane_position_m;  // arc length of the front along c.centre
-  std::string lane = v.lane;
-  int route_index = v.route_index;
-  for (int hop = 0; hop < 64 && front < body; ++hop) {
-    std::string via;
-    const std::string previous = PreviousLane(lane, v.route, &route_index, network, &via);
-    if (previous.empty()) break;
-    for (const std::string& l : {via, previous}) {
-      if (l.empty()) continue;
-      Prepend(network->Lane(l).shape, &c.centre);
-      front += PolylineLength(network->Lane(l).shape);
-    }
-    lane = previous;
-  }
+  const double front = way.front_m;  // arc length of the front along c.centre
   c.position_m = front - 0.5 * v.length_m;
   std::string beyond;
   std::optional<double> route_end;

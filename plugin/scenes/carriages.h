@@ -36,6 +36,23 @@ struct BodyPlan {
  *  would need more than kMaxCarriages carriages gets kMaxCarriages equal ones. */
 BodyPlan PlanBody(double length_m, double width_m, const VehicleTypeReport& type);
 
+/** A vehicle is bent where SUMO's box of its body (SumoObject::body_length_m: front to back, the
+ *  chord of its way) is at least this much shorter than its length: about 70 degrees of turn
+ *  along a 5 m car, 45 along a 12 m bus. */
+inline constexpr double kBentBodyToleranceM = 0.3;
+/** A bent body is cut into equal boxes of at most this length (our choice: a 12 m bus in a
+ *  turn is three boxes that each keep to the lanes they stand on). */
+inline constexpr double kBentBoxLengthM = 4.0;
+
+/** Whether SUMO's box of a vehicle (`box_length_m`) is shorter than the vehicle by
+ *  kBentBodyToleranceM or more. */
+bool IsBent(double length_m, double box_length_m);
+
+/** A bent body as a chain: equal boxes of at most kBentBoxLengthM, no gaps, along its way.
+ *  A single box would move rigidly along SUMO's angle (back to front), so its back would run
+ *  against the way the vehicle's back really goes, e.g. towards its follower in a U-turn. */
+BodyPlan PlanBentBody(double length_m);
+
 /** The carriages of `plan` behind the vehicle's first box, placed along the lanes it came by
  *  (its route's previous lanes, internal lanes included; straight on beyond where the network
  *  ends), each with the lane it stands on sampled as its own lane, its yaw rate the lane's at

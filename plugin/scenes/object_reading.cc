@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "plugin/network/polyline.h"
+#include "plugin/network/way_behind.h"
 #include "plugin/scenes/carriages.h"
 #include "plugin/scenes/footway.h"
 #include "plugin/scenes/road_users.h"
@@ -32,6 +33,27 @@ double Speed(double v) { return std::isnan(v) ? v : std::max(0.0, v); }
 bool Finite(const ObjectState& s) {
   return std::isfinite(s.x_m) && std::isfinite(s.y_m) && std::isfinite(s.yaw_rad) &&
          std::isfinite(s.speed_mps);
+}
+
+// The distance from the front to the point `metres` behind it along `way`: the chord of the
+// way a body of that length lies along; `metres` where the way is not known that far.
+double ChordOf(const WayLine& way, double metres) {
+  const std::optional<Point2> back = PointOnWay(way, metres);
+  const std::optional<Point2> front = PointOnWay(way, 0.0);
+  if (!back || !front) return metres;
+  return std::hypot(front->x - back->x, front->y - back->y);
+}
+
+// The centre pose of a body's first box, `length_m` long, with boxes behind it: along its own
+// part of `way` (SUMO's angle points along the whole body), its front SUMO's front bumper;
+// along SUMO's angle where the way is not known that far.
+Pose2 HeadPose(const SumoObject& o, const WayLine& way, double length_m) {
+  const std::optional<Point2> back = PointOnWay(way, length_m);
+  const std::optional<Point2> front = PointOnWay(way, 0.0);
+  if (!back || !front || std::hypot(front->x - back->x, front->y - back->y) < 1e-6)
+    return FrontBumperToCentre(o.x_m, o.y_m, o.angle_deg, length_m);
+  const double yaw = std::atan2(front->y - back->y, front->x - back->x);
+  return Pose2{o.x_m - 0.5 * length_m * std::cos(yaw), o.y_m - 0.5 * length_m * std::sin(yaw), yaw};
 }
 
 }  // namespace
@@ -113,12 +135,27 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.stopped = (o.stop_state & kStopped) != 0;
   s.parked = (o.stop_state & kParking) != 0;
   // A long body: its first box is the vehicle, the rest carriages behind it (carriages.h).
-  const BodyPlan body = o.lane.empty() ? BodyPlan{o.length_m, {}, 0.0}
-                                       : PlanBody(o.length_m, o.width_m, type);
-  s.length_m = body.head_length_m;
+  // With --bent-bodies so is a body bent by a turn (its way behind shorter from front to back
+  // than the vehicle, vehicle_bodies.h): each of its boxes keeps to the lanes it stands on.
+  BodyPlan body{o.length_m, {}, 0.0};
+  WayLine way;
+  bool bent = false;
+  if (!o.lane.empty()) {
+    body = PlanBody(o.length_m, o.width_m, type);
+    way = LineBehind(*network_, o.lane, o.lane_position_m, o.length_m, o.route, o.route_index);
+    bent = config_.bent_bodies && body.carriage_lengths_m.empty() &&
+           IsBent(o.length_m, ChordOf(way, o.length_m));
+    if (bent) body = PlanBentBody(o.length_m);
+  }
+  // With --bent-bodies one box is SUMO's box of the body (front to back, BodyLengthOf), which
+  // a slight bend leaves a little shorter than the vehicle.
+  const bool one_box = body.carriage_lengths_m.empty();
+  s.length_m = one_box && config_.bent_bodies ? BodyLengthOf(o) : body.head_length_m;
   s.width_m = o.width_m;
   if (o.height_m > 0.0) s.height_m = o.height_m;
-  const Pose2 c = FrontBumperToCentre(o.x_m, o.y_m, o.angle_deg, s.length_m);
+  const Pose2 c = one_box || !config_.bent_bodies
+                      ? FrontBumperToCentre(o.x_m, o.y_m, o.angle_deg, s.length_m)
+                      : HeadPose(o, way, s.length_m);
   s.state.x_m = c.x;
   s.state.y_m = c.y;
   s.state.yaw_rad = c.yaw;
@@ -126,13 +163,17 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.state.accel_mps2 = o.accel_mps2;
   s.normal_decel_mps2 = o.decel_mps2;
   // Yaw rate from the heading change since the previous step; 0 when the vehicle was not read
-  // at the previous step. With long steps it is replaced below by its lane's.
+  // at the previous step. With long steps it is replaced below by its lane's. SUMO's angle (the
+  // whole body's), so that a body whose first box changes between one box and a chain's does
+  // not turn by that change.
+  const double angle = NavigationDegToYaw(o.angle_deg);
   auto it = last_yaw_.find(o.id);
   if (it != last_yaw_.end() && sumo_time_s > it->second.first &&
       sumo_time_s - it->second.first < 1.5 * step_s_) {
-    s.state.yaw_rate_radps = WrapAngle(c.yaw - it->second.second) / (sumo_time_s - it->second.first);
+    s.state.yaw_rate_radps =
+        WrapAngle(angle - it->second.second) / (sumo_time_s - it->second.first);
   }
-  last_yaw_[o.id] = {sumo_time_s, c.yaw};
+  last_yaw_[o.id] = {sumo_time_s, angle};
   s.lane = o.lane;
   if (s.lane.empty()) return s;
   s.edge = network_->Lane(s.lane).edge;

@@ -37,6 +37,15 @@ struct SceneConfig {
    *  its expected acceleration (its reference hypothesis) is the deceleration that stops it
    *  there (CrossingStopDecel). Needs crossing_obligations; --no-crossing-stops turns it off. */
   bool crossing_stops{true};
+  /** --bent-bodies (off by default: measured, not kept; bench/RESULTS.md): a vehicle whose way
+   *  behind its front turns (SUMO's box of it, front to back, shorter than the vehicle: IsBent)
+   *  is a chain of boxes along that way, each keeping to the lanes it stands on; the first box
+   *  of a chain (a train's too) points along its own part of the way, not along SUMO's angle,
+   *  which points from the whole body's back to its front (carriages.h); a single box is SUMO's
+   *  (BodyLengthOf). The way behind is the route's edges already driven: where the body
+   *  stands, which sensors see, so observable_only keeps it. Off: every vehicle up to 20 m is
+   *  one box of its length along SUMO's angle. */
+  bool bent_bodies{false};
 };
 
 /** How far a vehicle can get within the horizon, at least 10 m: v T + a_max T^2 / 2 (its lane

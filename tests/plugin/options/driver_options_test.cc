@@ -143,6 +143,8 @@ TEST(DriverOptions, PresetAblationsAndWarningEstimate) {
   EXPECT_TRUE(d.scenes.crossing_stops);
   EXPECT_FALSE(with({"--no-crossing-stops"}).scenes.crossing_stops);
   EXPECT_TRUE(with({"--no-crossing-stops"}).scenes.crossing_obligations);
+  EXPECT_FALSE(d.scenes.bent_bodies);
+  EXPECT_TRUE(with({"--bent-bodies"}).scenes.bent_bodies);
   // A shorter horizon scales the path sample instants (1.0, 1.5, 2.0 of 2 s).
   const DriverOptions h = with({"--horizon", "1.5"});
   EXPECT_EQ(h.params.horizon_s, 1.5);

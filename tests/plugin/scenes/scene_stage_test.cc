@@ -210,6 +210,65 @@ TEST(SceneStage, AWalkerWaitingAtACrossingItMayNotEnterKeepsToTheFootway) {
   EXPECT_FALSE(read(off).pedestrians[1].state.expected_accel_mps2.has_value());
 }
 
+TEST(SceneStage, ABodyBentByATurnIsAChainOfBoxesAlongItsWay) {
+  // A square right turn: N north to (0, 0), the internal lane (0, 0) -> (0, 5) -> (5, 5), E east
+  // from (5, 5). A 12 m bus 1 m into E stands along 1 m of E, the whole turn and 1 m of N: its
+  // back at (0, -1), so SUMO's angle (back to front) is 45 degrees across both lanes.
+  FakeSumoWorld w;
+  w.AddEdge("N", 0, -100, 0, 0, 1);
+  w.AddLaneShape(":J_0", {Point2{0, 0}, Point2{0, 5}, Point2{5, 5}});
+  w.AddEdge("E", 5, 5, 105, 5, 1);
+  w.AddLinkVia("N_0", "E_0", ":J_0_0", "r");
+  w.AddLink(":J_0_0", "E_0", "M", false, "r");
+  SumoObject& bus = w.AddVehicle("bus", 6, 5, 45, 4.0, "E_0", 1.0, {"N", "E"});
+  bus.length_m = 12.0;
+  bus.width_m = 2.5;
+  bus.route_index = 1;
+  bus.body_length_m = std::hypot(6.0, 6.0);  // SUMO's box, as the observe stage measures it
+  w.AddVehicle("ego", 0, -20, 0, 5.0, "N_0", 80.0, {"N", "E"});
+  auto read = [&](SceneConfig config, const std::string& ego) {
+    SceneStage stage(config, w.StepLength(), true, &w, &w);
+    return stage.Run(Observe(w, {ego})).scenes.at(0);
+  };
+  SceneConfig chains;
+  chains.bent_bodies = true;  // --bent-bodies
+  const Scene s = read(chains, "ego");
+  const Vehicle* b = VehicleIn(s, "bus");
+  ASSERT_NE(b, nullptr);
+  // Three 4 m boxes. The first points along its own part of the way, east along E and the turn's
+  // last leg, not along SUMO's angle; the last stands on the turn's first leg, pointing north.
+  EXPECT_DOUBLE_EQ(b->length_m, 4.0);
+  EXPECT_NEAR(b->state.yaw_rad, 0.0, 1e-9);
+  EXPECT_NEAR(b->state.x_m, 4.0, 1e-9);
+  EXPECT_NEAR(b->state.y_m, 5.0, 1e-9);
+  ASSERT_EQ(b->carriages.size(), 2u);
+  EXPECT_DOUBLE_EQ(b->carriages[1].length_m, 4.0);
+  EXPECT_NEAR(b->carriages[1].x_m, 0.0, 1e-9);  // its centre 10 m behind the front
+  EXPECT_NEAR(b->carriages[1].y_m, 1.0, 1e-9);
+  EXPECT_NEAR(b->carriages[1].yaw_rad, kPi / 2, 1e-9);
+  // As an ego it is its first box (an ego's carriages are not modelled, as a train's).
+  const Scene as_ego = read(chains, "bus");
+  EXPECT_DOUBLE_EQ(as_ego.ego.length_m, 4.0);
+  EXPECT_NEAR(as_ego.ego.state.yaw_rad, 0.0, 1e-9);
+  EXPECT_TRUE(as_ego.ego.lanes.own.has_value());
+  // By default: one 12 m box along SUMO's angle, reaching back across both lanes.
+  const Scene o = read(SceneConfig{}, "ego");
+  const Vehicle* ob = VehicleIn(o, "bus");
+  ASSERT_NE(ob, nullptr);
+  EXPECT_DOUBLE_EQ(ob->length_m, 12.0);
+  EXPECT_NEAR(ob->state.yaw_rad, kPi / 4, 1e-9);
+  EXPECT_TRUE(ob->carriages.empty());
+  // Far into E the bus is straight: one 12 m box, whatever the switch.
+  w.Find("bus")->x_m = 40.0;
+  w.Find("bus")->angle_deg = 90.0;
+  w.Find("bus")->lane_position_m = 35.0;
+  w.Find("bus")->body_length_m = 12.0;
+  const Vehicle* straight = VehicleIn(read(chains, "ego"), "bus");
+  ASSERT_NE(straight, nullptr);
+  EXPECT_DOUBLE_EQ(straight->length_m, 12.0);
+  EXPECT_TRUE(straight->carriages.empty());
+}
+
 TEST(SceneStage, YawRateIsTheHeadingChangeOrWithLongStepsTheLanes) {
   FakeSumoWorld w(0.1);
   w.AddEdge("E", 0, 0, 300, 0, 1);
