@@ -304,6 +304,16 @@ class FakeSumoWorld final : public SumoWorld {
 
 /** An observation of every object of the world, each vehicle in `egos` an ego with every other
  *  object near it, read at the world's time (what the observe stage hands the scene stage). */
+/** A square right turn: N runs north to (0, 0), the junction's internal lane :J_0_0 goes
+ *  (0, 0) -> (0, 5) -> (5, 5), E runs east from (5, 5); one lane each. */
+inline void AddSquareRightTurn(FakeSumoWorld& w) {
+  w.AddEdge("N", 0, -100, 0, 0, 1);
+  w.AddLaneShape(":J_0", {Point2{0, 0}, Point2{0, 5}, Point2{5, 5}});
+  w.AddEdge("E", 5, 5, 105, 5, 1);
+  w.AddLinkVia("N_0", "E_0", ":J_0_0", "r");
+  w.AddLink(":J_0_0", "E_0", "M", false, "r");
+}
+
 inline Observation ObserveAll(FakeSumoWorld& w, const std::vector<std::string>& egos) {
   Observation obs;
   obs.time_s = w.StampOfLastStep();

@@ -18,11 +18,7 @@ using testing::FakeSumoWorld;
 // (0, 5) -> (5, 5) leads into E, east from (5, 5).
 FakeSumoWorld Corner() {
   FakeSumoWorld w;
-  w.AddEdge("N", 0, -100, 0, 0, 1);
-  w.AddLaneShape(":J_0", {Point2{0, 0}, Point2{0, 5}, Point2{5, 5}});
-  w.AddEdge("E", 5, 5, 105, 5, 1);
-  w.AddLinkVia("N_0", "E_0", ":J_0_0", "r");
-  w.AddLink(":J_0_0", "E_0", "M", false, "r");
+  testing::AddSquareRightTurn(w);
   return w;
 }
 

@@ -215,11 +215,7 @@ TEST(SceneStage, ABodyBentByATurnIsAChainOfBoxesAlongItsWay) {
   // from (5, 5). A 12 m bus 1 m into E stands along 1 m of E, the whole turn and 1 m of N: its
   // back at (0, -1), so SUMO's angle (back to front) is 45 degrees across both lanes.
   FakeSumoWorld w;
-  w.AddEdge("N", 0, -100, 0, 0, 1);
-  w.AddLaneShape(":J_0", {Point2{0, 0}, Point2{0, 5}, Point2{5, 5}});
-  w.AddEdge("E", 5, 5, 105, 5, 1);
-  w.AddLinkVia("N_0", "E_0", ":J_0_0", "r");
-  w.AddLink(":J_0_0", "E_0", "M", false, "r");
+  testing::AddSquareRightTurn(w);
   SumoObject& bus = w.AddVehicle("bus", 6, 5, 45, 4.0, "E_0", 1.0, {"N", "E"});
   bus.length_m = 12.0;
   bus.width_m = 2.5;
