@@ -19,7 +19,7 @@ bool MainThreatBehind(const Scene& scene, const Result& result) {
   const ObjectState& e = scene.ego.state;
   const double ahead =
       (state->x_m - e.x_m) * std::cos(e.yaw_rad) + (state->y_m - e.y_m) * std::sin(e.yaw_rad);
-  return ahead < 0.0;
+  return ahead < -0.5 * scene.ego.length_m;  // behind its rear, not beside its body
 }
 
 LateralPlan LateralPlanOf(const EscapeRoute& r, double lane_width_m) {

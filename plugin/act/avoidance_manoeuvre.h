@@ -10,10 +10,11 @@
 namespace criticality::plugin {
 
 /** Whether the object contributing most to the ego's collision probability is behind the ego
- *  (its centre behind the ego's centre along the ego's heading). Braking harder than the
+ *  (its centre behind the ego's rear along the ego's heading). Braking harder than the
  *  followed route then raises the closing speed of the car coming up behind: the closed loop's
- *  mitigation (full braking when every route probably collides) is for threats ahead only.
- *  False when no object contributes. */
+ *  mitigation (full braking when every route probably collides) is for threats ahead only. An
+ *  object beside the ego's body is not behind it: a cyclist beside a truck's trailer passes
+ *  ahead of the truck that brakes (truck_right_hook). False when no object contributes. */
 bool MainThreatBehind(const Scene& scene, const Result& result);
 
 /** The lane an escape route ends up in and how it gets there. */

@@ -172,15 +172,24 @@ TEST(MainThreatBehind, TheLargestContributorDecides) {
   EXPECT_TRUE(MainThreatBehind(scene, r));
   r.objects[1].contribution = 0.7;
   EXPECT_FALSE(MainThreatBehind(scene, r));
-  // Pedestrians count too; behind along the heading, whatever the side.
+  // Pedestrians count too; behind the ego's rear along the heading, whatever the side.
+  scene.ego.length_m = 4.5;
   Pedestrian p;
   p.id = "walker";
   p.state.x_m = 5.0;
-  p.state.y_m = -1.0;
+  p.state.y_m = -3.0;
   scene.pedestrians = {p};
   r.objects.push_back(ObjectResult{});
   r.objects.back().id = "walker";
   r.objects.back().contribution = 0.9;
+  EXPECT_TRUE(MainThreatBehind(scene, r));
+  // Beside the ego's body is not behind it, though behind its centre: a cyclist beside a 16.5 m
+  // truck's trailer (truck_right_hook), whom the truck's braking lets pass ahead.
+  scene.ego.length_m = 16.5;
+  scene.pedestrians[0].state.x_m = 2.0;
+  scene.pedestrians[0].state.y_m = -7.0;
+  EXPECT_FALSE(MainThreatBehind(scene, r));
+  scene.pedestrians[0].state.y_m = -8.5;
   EXPECT_TRUE(MainThreatBehind(scene, r));
 }
 
