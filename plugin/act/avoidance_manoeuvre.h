@@ -14,7 +14,8 @@ namespace criticality::plugin {
  *  followed route then raises the closing speed of the car coming up behind: the closed loop's
  *  mitigation (full braking when every route probably collides) is for threats ahead only. An
  *  object beside the ego's body is not behind it: a cyclist beside a truck's trailer passes
- *  ahead of the truck that brakes (truck_right_hook). False when no object contributes. */
+ *  ahead of the truck that brakes (truck_right_hook). The rear is the scene's ego box's (for
+ *  an ego that is a chain, e.g. a tram, its first box's). False when no object contributes. */
 bool MainThreatBehind(const Scene& scene, const Result& result);
 
 /** The lane an escape route ends up in and how it gets there. */

@@ -75,9 +75,6 @@ double OnShape(const LaneInfo& l, double lane_position_m) {
   return l.length_m > 0.0 ? lane_position_m * shape / l.length_m : lane_position_m;
 }
 
-// Lanes meeting closer than this are joined as they are (netconvert's joints are exact).
-constexpr double kJoinM = 0.5;
-
 }  // namespace
 
 std::vector<std::string> LanesBehind(RoadNetwork& network, const std::string& lane,
@@ -104,10 +101,12 @@ std::optional<Point2> PointBehind(RoadNetwork& network, const std::string& lane,
   double s = lane_position_m - distance_m;
   if (s >= 0.0) {
     const LaneInfo& l = network.Lane(lane);
+    if (l.shape.size() < 2) return std::nullopt;
     return PointAlong(l.shape, OnShape(l, s), nullptr);
   }
   for (const std::string& behind : LanesBehind(network, lane, route, route_index, -s)) {
     const LaneInfo& l = network.Lane(behind);
+    if (l.shape.size() < 2) return std::nullopt;
     s += l.length_m;
     if (s >= 0.0) return PointAlong(l.shape, OnShape(l, s), nullptr);
   }
@@ -120,16 +119,16 @@ WayLine LineBehind(RoadNetwork& network, const std::string& lane, double lane_po
   WayLine way;
   way.line = own.shape;
   way.front_m = OnShape(own, lane_position_m);
-  if (way.line.empty()) return way;
+  if (way.line.size() < 2) return way;
   for (const std::string& behind :
        LanesBehind(network, lane, route, route_index, metres - lane_position_m)) {
     std::vector<Point2> shape = network.Lane(behind).shape;
-    if (shape.empty()) break;
+    if (shape.size() < 2) break;
+    // Moved onto the line's start: exactly where netconvert's joints meet (millimetres), by
+    // the lanes' spacing after a lane change.
     const double dx = way.line.front().x - shape.back().x;
     const double dy = way.line.front().y - shape.back().y;
-    if (std::hypot(dx, dy) > kJoinM) {
-      for (Point2& p : shape) p = Point2{p.x + dx, p.y + dy};
-    }
+    for (Point2& p : shape) p = Point2{p.x + dx, p.y + dy};
     way.front_m += PolylineLength(shape);
     shape.insert(shape.end(), way.line.begin() + 1, way.line.end());
     way.line.swap(shape);
@@ -139,7 +138,7 @@ WayLine LineBehind(RoadNetwork& network, const std::string& lane, double lane_po
 
 std::optional<Point2> PointOnWay(const WayLine& way, double metres) {
   const double s = way.front_m - metres;
-  if (s < -1e-9 || way.line.empty()) return std::nullopt;
+  if (s < -1e-9 || way.line.size() < 2) return std::nullopt;
   return PointAlong(way.line, std::max(0.0, s), nullptr);
 }
 

@@ -36,15 +36,16 @@ struct BodyPlan {
  *  would need more than kMaxCarriages carriages gets kMaxCarriages equal ones. */
 BodyPlan PlanBody(double length_m, double width_m, const VehicleTypeReport& type);
 
-/** A vehicle is bent where SUMO's box of its body (SumoObject::body_length_m: front to back, the
- *  chord of its way) is at least this much shorter than its length: about 70 degrees of turn
- *  along a 5 m car, 45 along a 12 m bus. */
+/** A vehicle is bent where the chord of its way from its front back by its length (the lanes it
+ *  came by, way_behind.h LineBehind: SUMO's box of it, but for a lane change since the junction)
+ *  is at least this much shorter than its length: about 70 degrees of turn along a 5 m car, 45
+ *  along a 12 m bus. */
 inline constexpr double kBentBodyToleranceM = 0.3;
 /** A bent body is cut into equal boxes of at most this length (our choice: a 12 m bus in a
  *  turn is three boxes that each keep to the lanes they stand on). */
 inline constexpr double kBentBoxLengthM = 4.0;
 
-/** Whether SUMO's box of a vehicle (`box_length_m`) is shorter than the vehicle by
+/** Whether the chord of a vehicle's way (`box_length_m`) is shorter than the vehicle by
  *  kBentBodyToleranceM or more. */
 bool IsBent(double length_m, double box_length_m);
 

@@ -302,8 +302,6 @@ class FakeSumoWorld final : public SumoWorld {
   StepReport report_;
 };
 
-/** An observation of every object of the world, each vehicle in `egos` an ego with every other
- *  object near it, read at the world's time (what the observe stage hands the scene stage). */
 /** A square right turn: N runs north to (0, 0), the junction's internal lane :J_0_0 goes
  *  (0, 0) -> (0, 5) -> (5, 5), E runs east from (5, 5); one lane each. */
 inline void AddSquareRightTurn(FakeSumoWorld& w) {
@@ -314,6 +312,8 @@ inline void AddSquareRightTurn(FakeSumoWorld& w) {
   w.AddLink(":J_0_0", "E_0", "M", false, "r");
 }
 
+/** An observation of every object of the world, each vehicle in `egos` an ego with every other
+ *  object near it, read at the world's time (what the observe stage hands the scene stage). */
 inline Observation ObserveAll(FakeSumoWorld& w, const std::vector<std::string>& egos) {
   Observation obs;
   obs.time_s = w.StampOfLastStep();

@@ -38,8 +38,8 @@ TEST(VehicleBodies, InATurnTheBoxIsTheChordFromFrontToBack) {
   EXPECT_NEAR(MeasuredBodyLength(w, Truck(w, "E_0", 20.0, 25.0, 5.0)), 7.0, 1e-9);
   // Inside the junction, its front at (4, 5): back at (0, 2), a 3-4-5 chord.
   EXPECT_NEAR(MeasuredBodyLength(w, Truck(w, ":J_0_0", 9.0, 4.0, 5.0)), 5.0, 1e-9);
-  // Its front 2 m into the turn: the back on N at (0, -5).
-  EXPECT_NEAR(MeasuredBodyLength(w, Truck(w, ":J_0_0", 2.0, 0.0, 2.0)), 7.0, 1e-9);
+  // Its front 6 m into the turn, at (1, 5): the back on N at (0, -1).
+  EXPECT_NEAR(MeasuredBodyLength(w, Truck(w, ":J_0_0", 6.0, 1.0, 5.0)), std::hypot(1.0, 6.0), 1e-9);
 }
 
 TEST(VehicleBodies, WhereTheWayBehindIsNotKnownOrTheVehicleParksItIsItsLength) {

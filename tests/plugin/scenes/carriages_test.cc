@@ -105,6 +105,42 @@ TEST(Carriages, CarriagesStandAlongTheLanesTheVehicleCameBy) {
   EXPECT_DOUBLE_EQ(c[1].width_m, 2.4);
 }
 
+TEST(Carriages, CarriagesFollowBothPartsOfATurnThatAnInternalJunctionSplits) {
+  // N north to (0, 0); the turn's internal lane in two parts, (0, 0) -> (0, 5) and
+  // (0, 5) -> (5, 5) (TraCI: N_0 to E_0 via the first, the first to E_0 via the second); E east.
+  FakeSumoWorld w;
+  w.AddEdge("N", 0, -100, 0, 0, 1);
+  w.AddLaneShape(":J_1", {Point2{0, 0}, Point2{0, 5}});
+  w.AddLaneShape(":J_2", {Point2{0, 5}, Point2{5, 5}});
+  w.AddEdge("E", 5, 5, 105, 5, 1);
+  w.AddLinkVia("N_0", "E_0", ":J_1_0", "r");
+  w.AddLinkVia(":J_1_0", "E_0", ":J_2_0", "r");
+  w.AddLink(":J_2_0", "E_0", "M", false, "r");
+  VehicleTypeReport tram;  // a 4 m head, 4 m carriages 0.5 m apart
+  tram.locomotive_length_m = 4.0;
+  tram.carriage_length_m = 4.0;
+  tram.carriage_gap_m = 0.5;
+  const BodyPlan plan = PlanBody(13.0, 2.4, tram);
+  ASSERT_EQ(plan.carriage_lengths_m.size(), 2u);
+  VehicleOnLane v;
+  v.lane = "E_0";
+  v.lane_position_m = 1.0;  // front at (6, 5)
+  v.route = {"N", "E"};
+  v.route_index = 1;
+  v.speed_mps = 5.0;
+  v.length_m = plan.head_length_m;
+  v.centre = Pose2{4.0, 5.0, 0.0};
+  const std::vector<Carriage> c = PlaceCarriages(plan, v, 2.4, SceneConfig{}, 0.1, &w);
+  ASSERT_EQ(c.size(), 2u);
+  // The first carriage's centre 6.5 m behind the front: 1 m of E, 5 m of the second part,
+  // 0.5 m up the first, pointing north; the second's 11 m behind, on N.
+  EXPECT_NEAR(c[0].x_m, 0.0, 1e-9);
+  EXPECT_NEAR(c[0].y_m, 4.5, 1e-9);
+  EXPECT_NEAR(c[0].yaw_rad, kPi / 2, 1e-9);
+  EXPECT_NEAR(c[1].x_m, 0.0, 1e-9);
+  EXPECT_NEAR(c[1].y_m, 0.0, 1e-9);
+}
+
 TEST(Carriages, AtTheStartOfItsRouteTheBodyGoesOnStraightBehind) {
   FakeSumoWorld w = Corner();
   const BodyPlan plan = PlanBody(45.0, 2.4, VehicleTypeReport{});
