@@ -142,9 +142,11 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   bool bent = false;
   if (!o.lane.empty()) {
     body = PlanBody(o.length_m, o.width_m, type);
-    // A margin: the way is gathered by SUMO's lane lengths, measured along the shapes.
-    way = LineBehind(*network_, o.lane, o.lane_position_m, 1.2 * o.length_m + 1.0, o.route,
-                     o.route_index);
+    // The way behind only where it is used (every vehicle, every step): a margin, since the
+    // way is gathered by SUMO's lane lengths and measured along the shapes.
+    if (config_.bent_bodies)
+      way = LineBehind(*network_, o.lane, o.lane_position_m, 1.2 * o.length_m + 1.0, o.route,
+                       o.route_index);
     bent = config_.bent_bodies && body.carriage_lengths_m.empty() &&
            IsBent(o.length_m, ChordOf(way, o.length_m));
     if (bent) body = PlanBentBody(o.length_m);
