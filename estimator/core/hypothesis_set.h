@@ -77,6 +77,11 @@ struct HypothesisSet {
    *  which puts it where that update puts the object (ShiftAlongCourse in
    *  trajectory_generation.h). Per set, so that a batch may mix scenes. */
   double position_lead{0.0};
+  /** Its box is centred on the chord of its path (Scene::bodies_on_path): each stored pose's
+   *  centre lies PathSagitta(h, course curvature) toward the turn's centre from the model's,
+   *  its heading the model's, and the model's centre starts that far outside the measured one
+   *  (InitialSimulationState). */
+  bool body_on_path{false};
 
   // Lateral: section[k][l] is the path section through lateral sample l (right to left) that
   // is tracked until instant_time[k].
@@ -96,6 +101,20 @@ struct HypothesisSet {
 
   CRIT_HD int Trajectories() const { return n_profiles * n_paths; }
 };
+
+/** The course curvature a body on its path is bent by (HypothesisSet::body_on_path): the yaw
+ *  rate over the speed, the speed taken as at least 1 m/s (a standing vehicle's measured yaw
+ *  rate is 0, and so is its curvature here, at its start and in its prediction alike). */
+CRIT_HD double BodyCurvature(double yaw_rate, double v) { return yaw_rate / (v > 1.0 ? v : 1.0); }
+
+/** How far the centre of the chord of a body's path lies toward the turn's centre from the
+ *  path (signed: positive to the left, as the curvature): kappa c^2 / 8 for a box of length c,
+ *  the curvature limited to 2 / c (a turn of radius c / 2, the sagitta then c / 4). */
+CRIT_HD double PathSagitta(const HypothesisSet& h, double kappa) {
+  const double c = 2.0 * h.half_length, limit = 2.0 / c;
+  const double k = kappa < -limit ? -limit : (kappa > limit ? limit : kappa);
+  return k * (0.125 * c * c);
+}
 
 /** The largest positive acceleration the drive gives at speed v (power_limited). */
 CRIT_HD double DriveAccelLimit(const HypothesisSet& h, double v) {

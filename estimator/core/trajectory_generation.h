@@ -83,6 +83,11 @@ CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h,
   st.s.ay = h.v0 * h.yaw_rate0;
   st.steer = InitialSteer(h, cfg.controller);
   st.track_x = h.track_x0;
+  if (h.body_on_path && !h.on_track) {  // the measured box is the chord: its path lies outside
+    const double e = PathSagitta(h, BodyCurvature(h.yaw_rate0, h.v0));
+    st.s.x = e * std::sin(h.beta0);
+    st.s.y = -e * std::cos(h.beta0);
+  }
   return st;
 }
 
@@ -150,7 +155,8 @@ CRIT_HD double SlipFactor(StepContext* c, double slip) {
 
 /** Where the pose after a step goes in the scene frame: far away once the vehicle has left,
  *  else its local pose (shifted along the step's course (cx, cy) for an Euler-updating
- *  simulator) turned into the scene frame. */
+ *  simulator; for a body on its path, across it to the chord's centre) turned into the scene
+ *  frame. */
 CRIT_HD void StorePose(const HypothesisSet& h, const StepContext& c, const SimulationState& st,
                        double cx, double cy, double* x, double* y, double* yaw) {
   const MotionState& s = st.s;
@@ -160,6 +166,11 @@ CRIT_HD void StorePose(const HypothesisSet& h, const StepContext& c, const Simul
   } else {
     double px = s.x, py = s.y;
     if (h.position_lead > 0.0) ShiftAlongCourse(h.position_lead, s.v, h.v0, cx, cy, &px, &py);
+    if (h.body_on_path && !h.on_track) {
+      const double e = PathSagitta(h, BodyCurvature(s.yaw_rate, s.v));
+      px -= cy * e;
+      py += cx * e;
+    }
     *x = h.X_WL.x + c.c0 * px - c.s0 * py;
     *y = h.X_WL.y + c.s0 * px + c.c0 * py;
   }

@@ -401,6 +401,14 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
         px = hn::Add(px, hn::Mul(course_xe, shift));
         py = hn::Add(py, hn::Mul(course_ye, shift));
       }
+      if (h.body_on_path) {  // core::PathSagitta of core::BodyCurvature, across the course
+        const double c = 2.0 * h.half_length, limit = 2.0 / c;
+        const V kappa = hn::Div(nyr, hn::Max(nv, one));
+        const V e = hn::Mul(ClampV(kappa, hn::Set(d, -limit), hn::Set(d, limit)),
+                            hn::Set(d, 0.125 * c * c));
+        px = hn::Sub(px, hn::Mul(course_ye, e));
+        py = hn::Add(py, hn::Mul(course_xe, e));
+      }
       const V c0 = hn::Set(d, ctx.c0), s0 = hn::Set(d, ctx.s0);
       V wx = hn::Sub(hn::Add(hn::Set(d, h.X_WL.x), hn::Mul(c0, px)), hn::Mul(s0, py));
       V wy = hn::Add(hn::Add(hn::Set(d, h.X_WL.y), hn::Mul(s0, px)), hn::Mul(c0, py));

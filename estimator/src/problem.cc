@@ -900,6 +900,10 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   // The world's position update (estimator/ALGORITHM.md, "The simulator's position update").
   pb.ego.position_lead = 0.5 * scene.euler_update_step_s;
   for (core::HypothesisSet& h : pb.cos) h.position_lead = 0.5 * scene.euler_update_step_s;
+  // Where the world puts bodies in a turn (Scene::bodies_on_path).
+  pb.ego.body_on_path = scene.bodies_on_path;
+  for (core::HypothesisSet& h : pb.cos)
+    h.body_on_path = scene.bodies_on_path && h.model != core::MotionModelKind::kPedestrian;
 
   pb.counts.time_steps = pb.sim.n_steps;
   pb.counts.ego_trajectories = pb.ego.Trajectories();

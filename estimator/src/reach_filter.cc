@@ -44,7 +44,10 @@ std::vector<double> EgoReachBound(const core::HypothesisSet& ego,
                                 : bound[n] + v * tau + a * 0.5 * tau * tau;
     v += mu_g * tau;
   }
-  for (int n = 1; n <= sim.n_steps; ++n) bound[n] += dv_max * n * ego.position_lead;
+  // A body on its path (HypothesisSet::body_on_path) starts its model centre up to c / 4
+  // from its measured one and stores each pose up to c / 4 from its model centre.
+  const double chord = ego.body_on_path && !ego.on_track ? ego.half_length : 0.0;
+  for (int n = 1; n <= sim.n_steps; ++n) bound[n] += dv_max * n * ego.position_lead + chord;
   return bound;
 }
 

@@ -134,6 +134,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
   out << "criticality-scene 1\n";
   if (scene.euler_update_step_s > 0.0)
     out << "euler-update-step " << scene.euler_update_step_s << '\n';
+  if (scene.bodies_on_path) out << "bodies-on-path\n";
   out << "ego " << scene.ego.id;
   WriteState(out, scene.ego.state);
   out << ' ' << scene.ego.length_m << ' ' << scene.ego.width_m;
@@ -198,6 +199,8 @@ Scene ReadScene(std::istream& in, const std::string& source) {
     }
     if (kind == "euler-update-step") {
       scene.euler_update_step_s = r.Num();
+    } else if (kind == "bodies-on-path") {
+      scene.bodies_on_path = true;
     } else if (kind == "ego") {
       scene.ego.id = r.Word();
       scene.ego.state = r.State();

@@ -176,6 +176,7 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_crossing_obligations) o->scenes.crossing_obligations = false;
   if (raw.no_crossing_stops) o->scenes.crossing_stops = false;
   if (raw.bent_bodies) o->scenes.bent_bodies = true;
+  if (raw.bodies_on_path) o->scenes.bodies_on_path = true;
   o->params = p;
   if (o->estimator.threads < 0)
     Bad("--threads " + std::to_string(o->estimator.threads) + ": must be >= 0 (0: all cores)");

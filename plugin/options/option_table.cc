@@ -143,6 +143,11 @@ void OptionTable::Estimator(DriverOptions* o) {
       "ablation (ours): such a waiting pedestrian keeps its speed in its reference hypothesis "
       "instead of stopping where the crossing begins, as SUMO's persons do (simulator "
       "knowledge too: plugin/README.md, \"Pedestrians on the footway\")")(
+      "bodies-on-path", po::bool_switch(&raw.bodies_on_path),
+      "experimental (ours, off by default: it did not help the held-out networks as a whole, "
+      "bench/RESULTS.md): every vehicle is SUMO's box of it (front to back), predicted in a "
+      "turn centred on the chord of its path, not on the path, where its outer corners stand "
+      "out of its lane (plugin/README.md, \"Bodies in a turn\")")(
       "bent-bodies", po::bool_switch(&raw.bent_bodies),
       "experimental (ours, off by default: it did not help the held-out networks, "
       "bench/RESULTS.md): a vehicle whose way from back to front a turn bends (a bus or truck "

@@ -46,6 +46,12 @@ struct SceneConfig {
    *  stands, which sensors see, so observable_only keeps it. Off: every vehicle up to 20 m is
    *  one box of its length along SUMO's angle. */
   bool bent_bodies{false};
+  /** --bodies-on-path (experimental, off: measured, not kept; bench/RESULTS.md): every
+   *  vehicle's box is SUMO's (front to back, BodyLengthOf, centred between them) and the
+   *  estimator predicts it so (Scene::bodies_on_path: centred on the chord of the path its
+   *  centre follows). Off: a box of the vehicle's length from its front along SUMO's angle,
+   *  predicted centred on its path. */
+  bool bodies_on_path{false};
 };
 
 /** How far a vehicle can get within the horizon, at least 10 m: v T + a_max T^2 / 2 (its lane

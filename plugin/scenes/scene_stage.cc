@@ -35,6 +35,7 @@ SceneBatch SceneStage::Run(const Observation& obs) {
     for (int k : e.nearby) nearby.push_back(&batch.objects[k]);
     batch.scenes.push_back(BuildScene(ego, nearby, config_.range_m, &left_out));
     batch.scenes.back().euler_update_step_s = euler_update_step_s_;
+    batch.scenes.back().bodies_on_path = config_.bodies_on_path;
     batch.egos.push_back(e.self);
   }
   if (!left_out.empty()) Report(obs, left_out);

@@ -250,6 +250,22 @@ TEST(BackendsAgree, ScenesWithCarriages) {
   }
 }
 
+// Bodies on their path (Scene::bodies_on_path) in turning scenes: the same pair matrix.
+TEST(BackendsAgree, BodiesOnTheirPath) {
+  int with_collisions = 0, changed = 0;
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    Scene scene = testing::RandomScene(seed, 4, 2, seed % 2 == 0);
+    scene.ego.state.yaw_rate_radps = 0.25;
+    for (Vehicle& v : scene.vehicles) v.state.yaw_rate_radps = -0.3;
+    const double tangent = testing::PCollision(scene);
+    scene.bodies_on_path = true;
+    with_collisions += ExpectSameResult(scene, Params{}, "seed " + std::to_string(seed)) > 0;
+    changed += testing::PCollision(scene) != tangent;
+  }
+  EXPECT_GE(with_collisions, 3);
+  EXPECT_GE(changed, 1);  // the switch reaches the backends
+}
+
 TEST(BackendsAgree, AllDiscriminationScenes) {
   for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) {
     ExpectSameResult(d.scene, Params{}, d.name);

@@ -96,6 +96,8 @@ TEST(ReachFilter, EgoReachBoundHoldsForEverySimulatedEgoHypothesis) {
     scene.ego = SomeEgo(rng);
     // Every other trial as a simulator's Euler update moves it (poses shifted by the speed change).
     if (trial % 2) scene.euler_update_step_s = Uni(rng, 0.05, 1.0);
+    // Every third as SUMO draws bodies in a turn (the chord's poses lie off the centre's).
+    scene.bodies_on_path = trial % 3 == 0;
     const internal::Problem pb = BuildProblem(scene, params);
     const std::vector<double> bound = EgoReachBound(pb.ego, pb.sim);
     const int steps = pb.sim.n_steps;

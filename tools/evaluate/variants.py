@@ -38,6 +38,10 @@ VARIANTS = [
     Variant("no-crossing-stops",
             "ours without a waiting pedestrian's stop where its crossing begins (--no-crossing-stops)",
             {"act": "warn", "no-crossing-stops": "true"}),
+    Variant("bodies-on-path",
+            "ours with every vehicle SUMO's box, predicted centred on the chord of its path "
+            "(--bodies-on-path)",
+            {"act": "warn", "bodies-on-path": "true"}),
     Variant("bent-bodies",
             "ours with a body bent by a turn as a chain of boxes along its way (--bent-bodies)",
             {"act": "warn", "bent-bodies": "true"}),

@@ -204,6 +204,14 @@ struct Scene {
    *  estimator predicts those positions (estimator/ALGORITHM.md, "The simulator's position
    *  update"). */
   double euler_update_step_s{0.0};
+  /** Where a vehicle's body stands in a turn (experimental; estimator/ALGORITHM.md, "Bodies on
+   *  their path"). false (default, the paper's): its box is centred on the path its centre
+   *  follows, along its heading. true (SUMO's boxes, whose front and back both lie on the
+   *  path): its box is centred at the centre of that chord, the sagitta kappa c^2 / 8 inside
+   *  the path (c: the box's length, kappa: the curvature of its course, its yaw rate over its
+   *  speed), still along its heading. Every vehicle's measured pose is then such a box: its
+   *  model's centre starts the sagitta of its measured yaw rate outside it. */
+  bool bodies_on_path{false};
 };
 
 }  // namespace criticality

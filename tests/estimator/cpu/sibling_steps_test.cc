@@ -119,6 +119,38 @@ TEST(SiblingSteps, LanesFollowTheScalarStepWithinRounding) {
   EXPECT_GE(checked_others, 100);
 }
 
+// Bodies on their path (Scene::bodies_on_path): the chord's shift and the course's heading in
+// the lanes as in core::StorePose, on scenes whose vehicles turn.
+TEST(SiblingSteps, BodiesOnTheirPathFollowTheScalarStepWithinRounding) {
+  int checked = 0;
+  double moved = 0.0;  // how far the switch moves some pose: or the check would prove little
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    Scene s = testing::RandomScene(seed, 4, 0, seed % 2);
+    s.ego.state.yaw_rate_radps = 0.3;
+    for (Vehicle& v : s.vehicles) v.state.yaw_rate_radps = -0.2;
+    const Problem off = BuildProblem(s, Params{});
+    s.bodies_on_path = true;
+    const Problem pb = BuildProblem(s, Params{});
+    for (int count : {1, 7, 11}) {
+      EXPECT_LT(MaxPoseDifference(pb, pb.ego, SpreadPaths(pb.ego, count)), 1e-9) << seed;
+    }
+    for (const core::HypothesisSet& h : pb.cos) {
+      if (!internal::SiblingStepsApply(h, pb.sim)) continue;
+      std::vector<int> paths;
+      for (int l = 0; l < h.n_paths; ++l) paths.push_back(l);
+      EXPECT_LT(MaxPoseDifference(pb, h, paths), 1e-9) << seed << " other vehicle";
+      ++checked;
+    }
+    std::vector<double> a(pb.sim.n_steps), b = a, c = a, d = a, e = a, f = a;
+    core::SimulateHypothesis(pb.ego, pb.sim, 0, 0, a.data(), b.data(), c.data());
+    core::SimulateHypothesis(off.ego, off.sim, 0, 0, d.data(), e.data(), f.data());
+    for (int n = 0; n < pb.sim.n_steps; ++n)
+      moved = std::max(moved, std::hypot(a[n] - d[n], b[n] - e[n]));
+  }
+  EXPECT_GE(checked, 8);
+  EXPECT_GT(moved, 0.1);
+}
+
 TEST(SiblingSteps, CosSinMatchesLibm) {
   std::vector<double> a;
   for (int k = 0; k < 1003; ++k) a.push_back(-40.0 + 0.0797 * k);  // odd length: a tail

@@ -254,6 +254,20 @@ TEST(SceneStage, ABodyBentByATurnIsAChainOfBoxesAlongItsWay) {
   EXPECT_DOUBLE_EQ(ob->length_m, 12.0);
   EXPECT_NEAR(ob->state.yaw_rad, kPi / 4, 1e-9);
   EXPECT_TRUE(ob->carriages.empty());
+  EXPECT_FALSE(o.bodies_on_path);
+  // With --bodies-on-path: SUMO's box, front to back, centred between them, and the scene
+  // says so (the estimator predicts it as the chord of its path).
+  SceneConfig on_path;
+  on_path.bodies_on_path = true;
+  const Scene p = read(on_path, "ego");
+  EXPECT_TRUE(p.bodies_on_path);
+  const Vehicle* pb = VehicleIn(p, "bus");
+  ASSERT_NE(pb, nullptr);
+  EXPECT_NEAR(pb->length_m, std::hypot(6.0, 6.0), 1e-9);
+  EXPECT_NEAR(pb->state.x_m, 3.0, 1e-9);  // between the front (6, 5) and the back (0, -1)
+  EXPECT_NEAR(pb->state.y_m, 2.0, 1e-9);
+  EXPECT_NEAR(pb->state.yaw_rad, kPi / 4, 1e-9);
+  EXPECT_TRUE(pb->carriages.empty());
   // Far into E the bus is straight: one 12 m box, whatever the switch.
   w.Find("bus")->x_m = 40.0;
   w.Find("bus")->angle_deg = 90.0;
