@@ -38,6 +38,7 @@ struct Options {
   bool report{false};
   bool compare{false};
   bool no_simd{false};
+  bool no_skip{false};
   int cos{-1};
   int batch{0};
   std::string preset{"default"};
@@ -194,6 +195,7 @@ int Discrimination(const Params& params, const Options& opt) {
   eopt.backend = ParseBackend(opt.backend);
   eopt.threads = opt.threads;
   eopt.simd = !opt.no_simd;
+  eopt.skip_out_of_reach = !opt.no_skip;
   Estimator estimator(params, eopt);
   std::printf("discrimination benchmark, preset %s, backend %s\n", opt.preset.c_str(),
               BackendName(estimator.options().backend).c_str());
@@ -251,6 +253,7 @@ int Batch(const Scene& scene, const Params& params, const Options& opt) {
   eopt.backend = ParseBackend(opt.backend);
   eopt.threads = opt.threads;
   eopt.simd = !opt.no_simd;
+  eopt.skip_out_of_reach = !opt.no_skip;
   Estimator estimator(params, eopt);
   for (int k = 0; k < opt.warmup; ++k) estimator.EstimateBatch(scenes);
   std::vector<double> ms;
@@ -282,8 +285,8 @@ int Batch(const Scene& scene, const Params& params, const Options& opt) {
 // Every backend on the same scene, one after the other in this process.
 int Compare(const Scene& scene, const Params& params, const Options& opt) {
   // The cpu fast path twice: scalar (bit for bit the reference's pair matrix) and with SIMD.
-  std::vector<Backend> backends{Backend::kReference, Backend::kCpu, Backend::kCpu};
-  std::vector<std::string> names{"reference", "cpu-scalar", "cpu"};
+  std::vector<Backend> backends{Backend::kReference, Backend::kCpu, Backend::kCpu, Backend::kCpu};
+  std::vector<std::string> names{"reference", "cpu-scalar", "cpu-noskip", "cpu"};
   if (CudaUsable(nullptr)) {
     backends.push_back(Backend::kCuda);
     names.push_back("cuda");
@@ -296,6 +299,7 @@ int Compare(const Scene& scene, const Params& params, const Options& opt) {
     eopt.backend = b;
     eopt.threads = opt.threads;
     eopt.simd = names[k] != "cpu-scalar";
+    eopt.skip_out_of_reach = names[k] != "cpu-noskip";
     eopt.keep_pair_matrix = true;
     // The reference is slow: fewer repetitions keep --compare usable on S2.
     const int repeat = b == Backend::kReference ? std::max(1, std::min(opt.repeat, 3)) : opt.repeat;
@@ -367,6 +371,7 @@ int Paths(const Scene& scene, Params params, const Options& opt) {
   eopt.backend = ParseBackend(opt.backend);
   eopt.threads = opt.threads;
   eopt.simd = !opt.no_simd;
+  eopt.skip_out_of_reach = !opt.no_skip;
   Estimator estimator(params, eopt);
   const Result r = estimator.Estimate(scene);
   std::vector<const EscapeRoute*> probable, colliding;
@@ -443,8 +448,12 @@ int main(int argc, char** argv) {
       "cpu backend: the scalar fast path (bit for bit the reference's pair matrix) instead of "
       "sibling ego paths in SIMD lanes (within 3 ulp per sin/cos/atan; grazing contacts may "
       "differ)")(
+      "no-skip", po::bool_switch(&opt.no_skip),
+      "cpu backend: simulate every ego path, also the subtrees whose reach meets no object "
+      "(the same result; for comparing the cost)")(
       "compare", po::bool_switch(&opt.compare),
-      "run every available backend (reference, cpu-scalar, cpu, cuda) on the same scene in this process and "
+      "run every available backend (reference, cpu-scalar, cpu-noskip, cpu, cuda) on the same "
+      "scene in this process and "
       "print a table: times, pose combinations per second, ratio to the reference, agreement")(
       "cos", po::value(&opt.cos),
       "instead of --scene: the scaling scene with this many other vehicles (e.g. 1 3 10 30 100)")(
@@ -489,6 +498,7 @@ int main(int argc, char** argv) {
     eopt.backend = ParseBackend(opt.backend);
     eopt.threads = opt.threads;
     eopt.simd = !opt.no_simd;
+    eopt.skip_out_of_reach = !opt.no_skip;
     if (opt.cos > 100000)
       throw InputError("--cos = " + std::to_string(opt.cos) + ": at most 100000");
     Scene scene;

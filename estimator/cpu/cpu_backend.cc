@@ -8,6 +8,7 @@
 #include "core/trajectory_generation.h"
 #include "cpu/sibling_steps.h"
 #include "src/parallel_for.h"
+#include "src/reach_filter.h"
 
 namespace criticality {
 namespace {
@@ -44,8 +45,10 @@ int Power(int base, int exp) {
 
 }  // namespace
 
-CpuBackend::CpuBackend(int threads, bool simd)
-    : threads_(internal::ResolveThreads(threads)), simd_(simd) {}
+CpuBackend::CpuBackend(int threads, bool simd, bool skip_out_of_reach)
+    : threads_(internal::ResolveThreads(threads)),
+      simd_(simd),
+      skip_out_of_reach_(skip_out_of_reach) {}
 
 void CpuBackend::FinishSpan(const TrajectoryStore& t, std::vector<double>* c,
                             std::vector<double>* s, BlockBounds* b, int tr, int n0, int n1, int q0,
@@ -107,32 +110,144 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   co_cos_.resize(co_.yaw.size());
   co_sin_.resize(co_.yaw.size());
 
+  // Collision objects first (their swept circles decide which ego subtrees are out of reach):
+  // no shared prefixes (each keeps one lateral sample throughout); the paths of one (set,
+  // profile) in SIMD lanes where they apply, else one by one.
+  std::vector<std::pair<int, int>> co_tasks;  // (set, profile)
+  for (size_t o = 0; o < pb.cos.size(); ++o)
+    for (int profile = 0; profile < pb.cos[o].n_profiles; ++profile)
+      co_tasks.emplace_back(static_cast<int>(o), profile);
+  internal::ParallelFor(static_cast<int>(co_tasks.size()), threads_, [&](int begin, int end) {
+    for (int task = begin; task < end; ++task) {
+      const auto [o, profile] = co_tasks[task];
+      const core::HypothesisSet& h = pb.cos[o];
+      const int j0 = pb.co_offset[o] + profile * h.n_paths;
+      const bool co_lanes = simd_ && internal::SiblingStepsApply(h, pb.sim);
+      if (co_lanes) {
+        internal::SiblingSpan span = internal::SpanOf(h, pb.sim, profile, 0, steps, h.n_paths);
+        for (int path = 0; path < h.n_paths; ++path) {
+          const size_t at = co_.Offset(j0 + path);
+          internal::SetLane(&span, path, path, core::InitialSimulationState(h, pb.sim), &co_.x[at],
+                            &co_.y[at], &co_.yaw[at], &co_cos_[at], &co_sin_[at]);
+        }
+        internal::SimulateSiblingSteps(&span);
+      } else {
+        for (int path = 0; path < h.n_paths; ++path) {
+          const size_t at = co_.Offset(j0 + path);
+          core::SimulateHypothesis(h, pb.sim, profile, path, &co_.x[at], &co_.y[at], &co_.yaw[at]);
+        }
+      }
+      for (int path = 0; path < h.n_paths; ++path)
+        FinishSpan(co_, &co_cos_, &co_sin_, &co_bounds_, j0 + path, 0, steps, 0, blocks, co_lanes);
+    }
+  });
+  // Each object's circle over each block, around all its trajectories' poses.
+  const int n_sets = static_cast<int>(pb.cos.size());
+  object_blocks_.c.resize(static_cast<size_t>(n_sets) * blocks);
+  internal::ParallelFor(n_sets, threads_, [&](int begin, int end) {
+    for (int o = begin; o < end; ++o) {
+      for (int q = 0; q < blocks; ++q) {
+        Aabb box;
+        for (int j = pb.co_offset[o]; j < pb.co_offset[o + 1]; ++j) {
+          const size_t at = co_.Offset(j);
+          for (int n = block_begin_[q]; n < block_begin_[q + 1]; ++n)
+            box.Add(co_.x[at + n], co_.y[at + n]);
+        }
+        StoreCircle(box, static_cast<size_t>(o) * blocks + q, &object_blocks_.c);
+      }
+    }
+  });
+
   // Ego: the section tree, one node per (profile, instant k, group of paths that share their
   // first k + 1 sections), level by level. Each node starts from its parent's end state (the
   // profile's initial state at the top) and is simulated over its span on its group's first
   // path, with its cos/sin and block bounds; the span's poses are then copied to the group's
   // other paths. Nodes of one profile and level, whatever their parents, go together into
   // SIMD lanes (simd_), up to kMaxLateralSamples per call: 3 lateral samples give 3, 9, 27
-  // nodes per level, 1, 2, 4 vectors of 8 instead of 1, 3, 9.
+  // nodes per level, 1, 2, 4 vectors of 8 instead of 1, 3, 9. Below the first level a node
+  // whose reach meets no object is skipped with its subtree.
+  node_offset_[0] = 0;
+  for (int k = 0; k < K; ++k) node_offset_[k + 1] = node_offset_[k] + Power(L, k + 1);
+  const int nodes = node_offset_[K];
+  node_skipped_.assign(static_cast<size_t>(ego.n_profiles) * nodes, 0);
+  skipped_nodes_ = checked_nodes_ = 0;
+  const double ego_r = core::BoundingRadius(ego.half_length, ego.half_width);
+  std::vector<double> object_r(n_sets);
+  for (int o = 0; o < n_sets; ++o)
+    object_r[o] = core::BoundingRadius(pb.cos[o].half_length, pb.cos[o].half_width);
+  // Whether nothing below a node of instant k that starts at (x, y) in state st can meet any
+  // object: in every block from its span to the horizon, its reach by the block's end, grown
+  // by the bounding radii and a margin far above the backends' rounding, is apart from every
+  // object's circle of that block.
+  auto out_of_reach = [&](int k, double x, double y, const core::SimulationState& st) {
+    const double accel = std::hypot(st.s.ax, st.s.ay);
+    for (int q = phase_block_[k]; q < blocks; ++q) {
+      const double r =
+          internal::EgoReachAfter(ego, pb.sim, st.s.v, accel, block_begin_[q + 1] - boundary_[k]) +
+          ego_r + 1e-3;
+      for (int o = 0; o < n_sets; ++o) {
+        const Circle& c = object_blocks_.c[static_cast<size_t>(o) * blocks + q];
+        const double d = r + c.r + object_r[o];
+        if ((x - c.cx) * (x - c.cx) + (y - c.cy) * (y - c.cy) <= d * d) return false;
+      }
+    }
+    return true;
+  };
   const bool lanes = simd_ && internal::SiblingStepsApply(ego, pb.sim);
   constexpr int kPack = core::kMaxLateralSamples;
   std::vector<core::SimulationState> parents(ego.n_profiles,
                                              core::InitialSimulationState(ego, pb.sim));
   std::vector<core::SimulationState> nodes_state;
+  std::vector<std::pair<int, std::vector<int>>> packs;  // (profile, the nodes it simulates)
   for (int k = 0; k < K && k < core::kMaxSampleInstants; ++k) {
     const int count = Power(L, k + 1);      // nodes per profile at this level
     const int width = Power(L, K - 1 - k);  // paths below each node
     const int n0 = boundary_[k], n1 = boundary_[k + 1];
-    const int packs = (count + kPack - 1) / kPack;
     nodes_state.resize(static_cast<size_t>(ego.n_profiles) * count);
-    internal::ParallelFor(ego.n_profiles * packs, threads_, [&](int begin, int end) {
+    // The nodes to simulate, in packs of kPack per profile (those of skipped parents and those
+    // out of reach left out).
+    packs.clear();
+    for (int profile = 0; profile < ego.n_profiles; ++profile) {
+      std::vector<int> active;
+      for (int g = 0; g < count; ++g) {
+        const size_t node = static_cast<size_t>(profile) * nodes + node_offset_[k] + g;
+        if (k > 0) {
+          const int parent = g / L;
+          const size_t parent_node =
+              static_cast<size_t>(profile) * nodes + node_offset_[k - 1] + parent;
+          bool skip = node_skipped_[parent_node] != 0;
+          if (!skip && skip_out_of_reach_) {
+            // The parent's end pose, stored on its group's first path (the scene's at step 0).
+            const size_t at = ego_.Offset(profile * ego.n_paths + parent * width * L) + n0;
+            ++checked_nodes_;
+            skip = out_of_reach(k, n0 > 0 ? ego_.x[at - 1] : ego.X_WL.x,
+                                n0 > 0 ? ego_.y[at - 1] : ego.X_WL.y,
+                                parents[static_cast<size_t>(profile) * (count / L) + parent]);
+          }
+          if (skip) {
+            node_skipped_[node] = 1;
+            ++skipped_nodes_;
+            continue;
+          }
+        }
+        active.push_back(g);
+      }
+      for (size_t a = 0; a < active.size(); a += kPack) {
+        packs.emplace_back(profile,
+                           std::vector<int>(active.begin() + a,
+                                            active.begin() + std::min(active.size(), a + kPack)));
+      }
+    }
+    internal::ParallelFor(static_cast<int>(packs.size()), threads_, [&](int begin, int end) {
       for (int task = begin; task < end; ++task) {
-        const int profile = task / packs, g0 = (task % packs) * kPack;
-        const int g1 = std::min(count, g0 + kPack);
-        internal::SiblingSpan span = internal::SpanOf(ego, pb.sim, profile, n0, n1, g1 - g0);
-        for (int g = g0; g < g1; ++g) {
+        const int profile = packs[task].first;
+        const std::vector<int>& group = packs[task].second;
+        internal::SiblingSpan span =
+            internal::SpanOf(ego, pb.sim, profile, n0, n1, static_cast<int>(group.size()));
+        for (size_t l = 0; l < group.size(); ++l) {
+          const int g = group[l];
           const size_t at = ego_.Offset(profile * ego.n_paths + g * width);
-          internal::SetLane(&span, g - g0, g * width,
+          internal::SetLane(&span, static_cast<int>(l), g * width,
                             parents[static_cast<size_t>(profile) * (count / L) + g / L],
                             &ego_.x[at], &ego_.y[at], &ego_.yaw[at], &ego_cos_[at], &ego_sin_[at]);
         }
@@ -147,8 +262,9 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
         // Collision recognition reads a span's cos/sin and block bounds on the node's first
         // path only (it walks the same tree): only the poses are copied, for EgoTrajectories().
         const size_t n_span = n1 - n0;
-        for (int g = g0; g < g1; ++g) {
-          nodes_state[static_cast<size_t>(profile) * count + g] = span.state[g - g0];
+        for (size_t l = 0; l < group.size(); ++l) {
+          const int g = group[l];
+          nodes_state[static_cast<size_t>(profile) * count + g] = span.state[l];
           const int first = profile * ego.n_paths + g * width;
           const size_t at = ego_.Offset(first);
           FinishSpan(ego_, &ego_cos_, &ego_sin_, &ego_bounds_, first, n0, n1, phase_block_[k],
@@ -165,46 +281,14 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
     parents.swap(nodes_state);
   }
 
-  // Collision objects: no shared prefixes (each keeps one lateral sample throughout); the
-  // paths of one (set, profile) in SIMD lanes where they apply, else one by one.
-  std::vector<std::pair<int, int>> co_tasks;  // (set, profile)
-  for (size_t o = 0; o < pb.cos.size(); ++o)
-    for (int profile = 0; profile < pb.cos[o].n_profiles; ++profile)
-      co_tasks.emplace_back(static_cast<int>(o), profile);
-  internal::ParallelFor(static_cast<int>(co_tasks.size()), threads_, [&](int begin, int end) {
-    for (int task = begin; task < end; ++task) {
-      const auto [o, profile] = co_tasks[task];
-      const core::HypothesisSet& h = pb.cos[o];
-      const int j0 = pb.co_offset[o] + profile * h.n_paths;
-      const bool co_lanes = simd_ && internal::SiblingStepsApply(h, pb.sim);
-      if (co_lanes) {
-        internal::SiblingSpan span = internal::SpanOf(h, pb.sim, profile, 0, steps, h.n_paths);
-        for (int path = 0; path < h.n_paths; ++path) {
-          const size_t at = co_.Offset(j0 + path);
-          internal::SetLane(&span, path, path, core::InitialSimulationState(h, pb.sim),
-                            &co_.x[at], &co_.y[at], &co_.yaw[at], &co_cos_[at], &co_sin_[at]);
-        }
-        internal::SimulateSiblingSteps(&span);
-      } else {
-        for (int path = 0; path < h.n_paths; ++path) {
-          const size_t at = co_.Offset(j0 + path);
-          core::SimulateHypothesis(h, pb.sim, profile, path, &co_.x[at], &co_.y[at], &co_.yaw[at]);
-        }
-      }
-      for (int path = 0; path < h.n_paths; ++path)
-        FinishSpan(co_, &co_cos_, &co_sin_, &co_bounds_, j0 + path, 0, steps, 0, blocks, co_lanes);
-    }
-  });
-
-  // Swept bounds of the tree nodes (post-order: a node's span plus its children's bounds).
-  node_offset_[0] = 0;
-  for (int k = 0; k < K; ++k) node_offset_[k + 1] = node_offset_[k] + Power(L, k + 1);
-  const int nodes = node_offset_[K];
+  // Swept bounds of the tree nodes (post-order: a node's span plus its children's bounds;
+  // a skipped node has none and adds nothing).
   const size_t n_node_bounds = static_cast<size_t>(ego.n_profiles) * nodes;
   node_bounds_.c.resize(n_node_bounds);
   auto sweep = [&](auto&& self, int profile, int k, int group) -> Aabb {
     Aabb box;
     if (k >= core::kMaxSampleInstants) return box;  // never: K <= kMaxSampleInstants
+    if (node_skipped_[static_cast<size_t>(profile) * nodes + node_offset_[k] + group]) return box;
     const int width = Power(L, K - 1 - k);
     const size_t at = ego_.Offset(profile * ego.n_paths + group * width);
     for (int n = boundary_[k]; n < boundary_[k + 1]; ++n) box.Add(ego_.x[at + n], ego_.y[at + n]);
@@ -280,6 +364,7 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
         if (k >= core::kMaxSampleInstants) return;  // never: K <= kMaxSampleInstants
         // Swept bounds: nothing below this node comes near this CO trajectory.
         const size_t nb = static_cast<size_t>(profile) * nodes + node_offset_[k] + group;
+        if (node_skipped_[nb]) return;  // out of reach: never simulated
         const size_t tb = static_cast<size_t>(j) * K + k;
         const Circle &nc = node_bounds_.c[nb], &tc = co_tail_.c[tb];
         const double sx = nc.cx - tc.cx, sy = nc.cy - tc.cy;

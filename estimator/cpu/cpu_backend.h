@@ -14,6 +14,15 @@
 //  - Swept bounds prune whole subtrees: each tree node has a circle around every pose of all
 //    its descendant paths from its span to the horizon, each CO trajectory one around its
 //    poses over the same steps; when they are apart, no descendant can collide.
+//  - Subtrees out of reach are not simulated (issue 23, item 2): the other vehicles' and
+//    pedestrians' trajectories are simulated first; before a tree node below the first level is
+//    simulated, the ego's reach from its start over the rest of the horizon
+//    (internal::EgoReachAfter, from its parent's end state, by the end of each block) is
+//    checked against each object's circle of that block (all its trajectories); when it meets
+//    none in any block, no
+//    descendant path can collide, and the subtree is neither simulated nor checked. The pair
+//    matrix is the same (its entries there are 0 either way); EgoTrajectories() then holds no
+//    poses for the paths of skipped subtrees (ReferenceBackend has every pose).
 //  - cos/sin of every pose computed once; threads over independent tree roots.
 //  - With simd (the default), the nodes of one profile and level, and another vehicle's paths
 //    of one profile, are simulated together in SIMD lanes (cpu/sibling_steps.h), with cos/sin
@@ -29,13 +38,17 @@ namespace criticality {
 class CpuBackend final : public EstimatorBackend {
  public:
   /** @param simd sibling ego paths in SIMD lanes and vector cos/sin (EstimatorOptions::simd). */
-  CpuBackend(int threads, bool simd);
+  CpuBackend(int threads, bool simd, bool skip_out_of_reach = true);
   void GenerateTrajectories(const internal::Problem& problem) override;
   void RecognizeCollisions(const internal::Problem& problem,
                            std::vector<std::int16_t>* first_step) override;
   int Threads() const override { return threads_; }
   const internal::TrajectoryStore& EgoTrajectories() const override { return ego_; }
   const internal::TrajectoryStore& CoTrajectories() const override { return co_; }
+  /** Tree nodes the last GenerateTrajectories skipped as out of reach, and all its nodes (per
+   *  profile, below the first level: the nodes that could be skipped). */
+  int SkippedNodes() const { return skipped_nodes_; }
+  int CheckedNodes() const { return checked_nodes_; }
 
   /** Steps per collision block (bounding circles). */
   static constexpr int kBlockSteps = 5;
@@ -58,6 +71,13 @@ class CpuBackend final : public EstimatorBackend {
 
   int threads_;
   bool simd_;
+  bool skip_out_of_reach_;
+  int skipped_nodes_{0}, checked_nodes_{0};
+  // Per (profile, tree node): 1 when out of reach (not simulated, not checked).
+  std::vector<char> node_skipped_;
+  // Per (collision object set, block): a circle around every pose of all its trajectories in
+  // the block.
+  BlockBounds object_blocks_;
   internal::TrajectoryStore ego_;
   internal::TrajectoryStore co_;
   std::vector<double> ego_cos_, ego_sin_, co_cos_, co_sin_;

@@ -169,7 +169,8 @@ Estimator::Estimator(const Params& params, const EstimatorOptions& options)
       break;
     case Backend::kCpu:
     case Backend::kAuto:
-      backend_ = std::make_unique<CpuBackend>(options_.threads, options_.simd);
+      backend_ =
+          std::make_unique<CpuBackend>(options_.threads, options_.simd, options_.skip_out_of_reach);
       break;
     case Backend::kCuda:
       if (!CudaUsable(&why)) {

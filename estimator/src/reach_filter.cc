@@ -17,38 +17,75 @@ constexpr double kMarginM = 1e-3;
 
 std::vector<double> EgoReachBound(const core::HypothesisSet& ego,
                                   const core::SimulationConfig& sim) {
-  const double tau = sim.tau;
-  const double mu_g = ego.vehicle.friction * core::kGravity;
+  return EgoReachBoundFrom(ego, sim, ego.v0, std::hypot(ego.accel0, ego.v0 * ego.yaw_rate0),
+                           sim.n_steps);
+}
+
+namespace {
+
+// What the bound is made of (EgoReachBoundFrom).
+struct ReachTerms {
+  double mu_g, a_first, a_later, dv_max, stretch, turned, chord;
+};
+
+ReachTerms TermsOf(const core::HypothesisSet& ego, const core::SimulationConfig& sim,
+                   double v_start, double accel) {
+  ReachTerms t;
+  t.mu_g = ego.vehicle.friction * core::kGravity;
   const double wheelbase = ego.vehicle.lf_m + ego.vehicle.lr_m;
   // The kinematic model runs below the seam speed; an ego that is kinematic at every speed (a
   // bicycle, a rail vehicle) never gets faster than v0 + mu g T within the horizon.
   const double v_seam =
-      std::isinf(ego.seam_speed) ? ego.v0 + mu_g * sim.n_steps * tau : ego.seam_speed;
+      std::isinf(ego.seam_speed) ? ego.v0 + t.mu_g * sim.n_steps * sim.tau : ego.seam_speed;
   const double turn_kinematic =
       v_seam * v_seam * std::tan(sim.controller.max_steer_rad) / wheelbase;
-  const double a_later = std::sqrt(mu_g * mu_g + turn_kinematic * turn_kinematic);
-  const double a_first = std::hypot(ego.accel0, ego.v0 * ego.yaw_rate0);
-  std::vector<double> bound(sim.n_steps + 1, 0.0);
-  double v = ego.v0;
+  t.a_later = std::sqrt(t.mu_g * t.mu_g + turn_kinematic * turn_kinematic);
+  t.a_first = accel;
   // A simulator's Euler update shifts each pose along the course by (v - v0) * lead, and
   // |v - v0| grows by at most the largest acceleration per step.
-  const double dv_max = std::max(a_first, a_later) * tau;
+  t.dv_max = std::max(t.a_first, t.a_later) * sim.tau;
   // On a track (HypothesisSet::on_track) the centre keeps its offset d from the track, so it
   // covers up to (1 + |d| kappa) times the track's arc, kappa <= 2|a| on a parabola.
-  const double stretch =
-      ego.on_track ? 1.0 + std::fabs(ego.track_offset) * 2.0 * std::fabs(ego.reference_path.a)
-                   : 1.0;
-  for (int n = 0; n < sim.n_steps; ++n) {
-    const double a = n == 0 ? a_first : a_later;
-    bound[n + 1] = ego.on_track ? bound[n] + stretch * (v * tau + a * 0.5 * tau * tau)
-                                : bound[n] + v * tau + a * 0.5 * tau * tau;
-    v += mu_g * tau;
-  }
+  t.stretch = ego.on_track
+                  ? 1.0 + std::fabs(ego.track_offset) * 2.0 * std::fabs(ego.reference_path.a)
+                  : 1.0;
+  // From a later state the shift already in its pose, (v - v0) lead along its course, may turn
+  // with the course: at most twice its length.
+  t.turned = 2.0 * std::fabs(v_start - ego.v0) * ego.position_lead;
   // A body on its path (HypothesisSet::body_on_path) starts its model centre up to c / 4
   // from its measured one and stores each pose up to c / 4 from its model centre.
-  const double chord = ego.body_on_path && !ego.on_track ? ego.half_length : 0.0;
-  for (int n = 1; n <= sim.n_steps; ++n) bound[n] += dv_max * n * ego.position_lead + chord;
+  t.chord = ego.body_on_path && !ego.on_track ? ego.half_length : 0.0;
+  return t;
+}
+
+}  // namespace
+
+std::vector<double> EgoReachBoundFrom(const core::HypothesisSet& ego,
+                                      const core::SimulationConfig& sim, double v_start,
+                                      double accel, int steps) {
+  const double tau = sim.tau;
+  const ReachTerms t = TermsOf(ego, sim, v_start, accel);
+  std::vector<double> bound(steps + 1, 0.0);
+  double v = v_start;
+  for (int n = 0; n < steps; ++n) {
+    const double a = n == 0 ? t.a_first : t.a_later;
+    bound[n + 1] = bound[n] + t.stretch * (v * tau + a * 0.5 * tau * tau);
+    v += t.mu_g * tau;
+  }
+  for (int n = 1; n <= steps; ++n)
+    bound[n] += t.dv_max * n * ego.position_lead + t.turned + t.chord;
   return bound;
+}
+
+double EgoReachAfter(const core::HypothesisSet& ego, const core::SimulationConfig& sim,
+                     double v_start, double accel, int steps) {
+  if (steps <= 0) return 0.0;
+  const double tau = sim.tau, m = steps;
+  const ReachTerms t = TermsOf(ego, sim, v_start, accel);
+  // sum_{n<m} (v + mu g n tau) tau + (a_first + (m - 1) a_later) tau^2 / 2
+  const double travel = v_start * m * tau + t.mu_g * tau * tau * m * (m - 1.0) / 2.0 +
+                        (t.a_first + (m - 1.0) * t.a_later) * 0.5 * tau * tau;
+  return t.stretch * travel + t.dv_max * m * ego.position_lead + t.turned + t.chord;
 }
 
 std::vector<char> OutOfReach(const Problem& pb) {

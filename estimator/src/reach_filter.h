@@ -29,6 +29,19 @@ namespace criticality::internal {
 std::vector<double> EgoReachBound(const core::HypothesisSet& ego,
                                   const core::SimulationConfig& sim);
 
+/** The same bound from a state the simulation of `ego` reached (speed v, acceleration vector of
+ *  length `accel`) for `steps` more steps: bound[m] >= |stored pose m steps on - stored pose
+ *  at that state|, m = 0..steps, whatever hypothesis continues from it (the stored poses: the
+ *  shifts of HypothesisSet::position_lead and body_on_path included). */
+std::vector<double> EgoReachBoundFrom(const core::HypothesisSet& ego,
+                                      const core::SimulationConfig& sim, double v, double accel,
+                                      int steps);
+
+/** EgoReachBoundFrom(...)[steps] in closed form (the sums of its steps), for the CPU backend's
+ *  per-node test; at least that value up to rounding (callers add a margin). */
+double EgoReachAfter(const core::HypothesisSet& ego, const core::SimulationConfig& sim, double v,
+                     double accel, int steps);
+
 /** out[o] = 1 when collision object o of `problem` (o < problem.objects.size()) can meet no
  *  ego hypothesis: neither its own box nor any of its carriages' boxes. */
 std::vector<char> OutOfReach(const Problem& problem);

@@ -116,6 +116,47 @@ TEST(ReachFilter, EgoReachBoundHoldsForEverySimulatedEgoHypothesis) {
   EXPECT_LT(tightest, 6.0);
 }
 
+// From a state the simulation reached (a tree node's start, cpu/cpu_backend.h), the bound
+// holds for the rest of the hypothesis, and EgoReachAfter is its last value in closed form.
+TEST(ReachFilter, EgoReachBoundFromALaterStateHoldsForTheRestOfEachHypothesis) {
+  std::mt19937_64 rng(20261202);
+  double tightest = 1e9;
+  for (int trial = 0; trial < 30; ++trial) {
+    const Params params = SomeParams(rng);
+    Scene scene;
+    scene.ego = SomeEgo(rng);
+    if (trial % 2) scene.euler_update_step_s = Uni(rng, 0.05, 1.0);
+    scene.bodies_on_path = trial % 3 == 0;
+    const internal::Problem pb = BuildProblem(scene, params);
+    const int steps = pb.sim.n_steps;
+    std::vector<double> x(steps), y(steps), yaw(steps);
+    for (int t = 0; t < pb.ego.Trajectories(); t += 7) {
+      const int profile = t / pb.ego.n_paths, path = t % pb.ego.n_paths;
+      for (int n0 : {steps / 3, 2 * steps / 3}) {
+        core::SimulationState st = core::InitialSimulationState(pb.ego, pb.sim);
+        core::SimulateVehicleSteps(pb.ego, pb.sim, profile, path, 0, n0, &st, x.data(), y.data(),
+                                   yaw.data());
+        const core::SimulationState at = st;
+        core::SimulateVehicleSteps(pb.ego, pb.sim, profile, path, n0, steps, &st, x.data(),
+                                   y.data(), yaw.data());
+        const std::vector<double> bound = internal::EgoReachBoundFrom(
+            pb.ego, pb.sim, at.s.v, std::hypot(at.s.ax, at.s.ay), steps - n0);
+        for (int n = n0; n < steps; ++n) {  // pose n is n - n0 + 1 steps after pose n0 - 1
+          const double d = std::hypot(x[n] - x[n0 - 1], y[n] - y[n0 - 1]);
+          ASSERT_LE(d, bound[n - n0 + 1])
+              << "trial " << trial << " hypothesis " << t << " from " << n0 << " step " << n;
+        }
+        tightest = std::min(tightest, bound.back() - std::hypot(x[steps - 1] - x[n0 - 1],
+                                                                y[steps - 1] - y[n0 - 1]));
+        const double closed = internal::EgoReachAfter(pb.ego, pb.sim, at.s.v,
+                                                      std::hypot(at.s.ax, at.s.ay), steps - n0);
+        EXPECT_NEAR(closed, bound.back(), 1e-9 * (1.0 + bound.back()));
+      }
+    }
+  }
+  EXPECT_LT(tightest, 6.0);  // a bound, not a guess far out
+}
+
 // A scene whose objects sit around the edge of the ego's reach: at the bound's distance plus
 // the bounding radii, plus or minus a few metres, heading anywhere.
 Scene EdgeScene(std::mt19937_64& rng, const Params& params) {

@@ -56,6 +56,10 @@ struct EstimatorOptions {
    *  differ from the reference's in grazing contacts; false: the scalar code, bit for bit the
    *  reference's pair matrix. */
   bool simd{true};
+  /** cpu backend: ego subtrees whose reach meets no object are neither simulated nor checked
+   *  (cpu/cpu_backend.h). Changes nothing in the result; false: every ego path is simulated
+   *  (for comparing the cost). */
+  bool skip_out_of_reach{true};
 };
 
 class EstimatorBackend;
