@@ -87,17 +87,23 @@ void ExpectSameRoute(const EscapeRoute& a, const EscapeRoute& b, const std::stri
   EXPECT_EQ(a.x_m, b.x_m) << what;
 }
 
+// An ego alone with the trial's params: every other trial as a simulator's Euler update moves
+// it (poses shifted by the speed change), every third as SUMO draws bodies in a turn (the
+// chord's poses lie off the centre's).
+Scene SomeEgoScene(std::mt19937_64& rng, int trial) {
+  Scene scene;
+  scene.ego = SomeEgo(rng);
+  if (trial % 2) scene.euler_update_step_s = Uni(rng, 0.05, 1.0);
+  scene.bodies_on_path = trial % 3 == 0;
+  return scene;
+}
+
 TEST(ReachFilter, EgoReachBoundHoldsForEverySimulatedEgoHypothesis) {
   std::mt19937_64 rng(20261124);
   double tightest = 1e9;  // smallest margin between the bound and a hypothesis at the horizon
   for (int trial = 0; trial < 40; ++trial) {
     const Params params = SomeParams(rng);
-    Scene scene;
-    scene.ego = SomeEgo(rng);
-    // Every other trial as a simulator's Euler update moves it (poses shifted by the speed change).
-    if (trial % 2) scene.euler_update_step_s = Uni(rng, 0.05, 1.0);
-    // Every third as SUMO draws bodies in a turn (the chord's poses lie off the centre's).
-    scene.bodies_on_path = trial % 3 == 0;
+    const Scene scene = SomeEgoScene(rng, trial);
     const internal::Problem pb = BuildProblem(scene, params);
     const std::vector<double> bound = EgoReachBound(pb.ego, pb.sim);
     const int steps = pb.sim.n_steps;
@@ -123,11 +129,7 @@ TEST(ReachFilter, EgoReachBoundFromALaterStateHoldsForTheRestOfEachHypothesis) {
   double tightest = 1e9;
   for (int trial = 0; trial < 30; ++trial) {
     const Params params = SomeParams(rng);
-    Scene scene;
-    scene.ego = SomeEgo(rng);
-    if (trial % 2) scene.euler_update_step_s = Uni(rng, 0.05, 1.0);
-    scene.bodies_on_path = trial % 3 == 0;
-    const internal::Problem pb = BuildProblem(scene, params);
+    const internal::Problem pb = BuildProblem(SomeEgoScene(rng, trial), params);
     const int steps = pb.sim.n_steps;
     std::vector<double> x(steps), y(steps), yaw(steps);
     for (int t = 0; t < pb.ego.Trajectories(); t += 7) {
