@@ -88,6 +88,7 @@ void CpuBackend::ResizeBounds(const TrajectoryStore& t, BlockBounds* b) const {
 void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   const int steps = pb.Steps();
   const core::HypothesisSet& ego = pb.ego;
+  tree_ = Tree{ego.n_profiles, ego.n_paths, ego.n_instants, ego.n_lateral};
   ego_.Resize(pb.EgoTrajectories(), steps);
   co_.Resize(pb.CoTrajectories(), steps);
   core::InstantBoundaries(ego, pb.sim, boundary_);
@@ -209,28 +210,30 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
     packs.clear();
     for (int profile = 0; profile < ego.n_profiles; ++profile) {
       std::vector<int> active;
-      for (int g = 0; g < count; ++g) {
-        const size_t node = static_cast<size_t>(profile) * nodes + node_offset_[k] + g;
+      for (int parent = 0; parent < count / L; ++parent) {
+        // The children of one parent start from its end state: one test for all of them.
+        bool skip = false;
         if (k > 0) {
-          const int parent = g / L;
           const size_t parent_node =
               static_cast<size_t>(profile) * nodes + node_offset_[k - 1] + parent;
-          bool skip = node_skipped_[parent_node] != 0;
+          skip = node_skipped_[parent_node] != 0;
           if (!skip && skip_out_of_reach_) {
             // The parent's end pose, stored on its group's first path (the scene's at step 0).
             const size_t at = ego_.Offset(profile * ego.n_paths + parent * width * L) + n0;
-            ++checked_nodes_;
+            checked_nodes_ += L;
             skip = out_of_reach(k, n0 > 0 ? ego_.x[at - 1] : ego.X_WL.x,
                                 n0 > 0 ? ego_.y[at - 1] : ego.X_WL.y,
                                 parents[static_cast<size_t>(profile) * (count / L) + parent]);
           }
+        }
+        for (int g = parent * L; g < (parent + 1) * L; ++g) {
           if (skip) {
-            node_skipped_[node] = 1;
+            node_skipped_[static_cast<size_t>(profile) * nodes + node_offset_[k] + g] = 1;
             ++skipped_nodes_;
-            continue;
+          } else {
+            active.push_back(g);
           }
         }
-        active.push_back(g);
       }
       for (size_t a = 0; a < active.size(); a += kPack) {
         packs.emplace_back(profile,
@@ -259,22 +262,15 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
                                        &span.state[c], span.x[c], span.y[c], span.yaw[c]);
           }
         }
-        // Collision recognition reads a span's cos/sin and block bounds on the node's first
-        // path only (it walks the same tree): only the poses are copied, for EgoTrajectories().
-        const size_t n_span = n1 - n0;
+        // Collision recognition reads a span's poses, cos/sin and block bounds on the node's
+        // first path only (it walks the same tree): the group's other paths get the poses
+        // only when EgoTrajectories() is asked for them.
         for (size_t l = 0; l < group.size(); ++l) {
           const int g = group[l];
           nodes_state[static_cast<size_t>(profile) * count + g] = span.state[l];
           const int first = profile * ego.n_paths + g * width;
-          const size_t at = ego_.Offset(first);
           FinishSpan(ego_, &ego_cos_, &ego_sin_, &ego_bounds_, first, n0, n1, phase_block_[k],
                      phase_block_[k + 1], lanes);
-          for (int p = 1; p < width; ++p) {
-            const size_t to = ego_.Offset(first + p) + n0, from = at + n0;
-            for (std::vector<double>* v : {&ego_.x, &ego_.y, &ego_.yaw}) {
-              std::memcpy(v->data() + to, v->data() + from, n_span * sizeof(double));
-            }
-          }
         }
       }
     });
@@ -304,16 +300,49 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   });
   const size_t n_tail = static_cast<size_t>(pb.CoTrajectories()) * K;
   co_tail_.c.resize(n_tail);
-  internal::ParallelFor(pb.CoTrajectories(), threads_, [&](int begin, int end) {
-    for (int j = begin; j < end; ++j) {
-      Aabb box;
-      const size_t at = co_.Offset(j);
+  object_tail_.c.resize(static_cast<size_t>(n_sets) * K);
+  internal::ParallelFor(n_sets, threads_, [&](int begin, int end) {
+    for (int o = begin; o < end; ++o) {
+      Aabb all;  // the object's tail: around every tail of its trajectories
+      std::vector<Aabb> box(pb.co_offset[o + 1] - pb.co_offset[o]);
       for (int k = K - 1; k >= 0; --k) {  // tails grow backwards from the horizon
-        for (int n = boundary_[k]; n < boundary_[k + 1]; ++n) box.Add(co_.x[at + n], co_.y[at + n]);
-        StoreCircle(box, static_cast<size_t>(j) * K + k, &co_tail_.c);
+        for (int j = pb.co_offset[o]; j < pb.co_offset[o + 1]; ++j) {
+          Aabb& b = box[j - pb.co_offset[o]];
+          const size_t at = co_.Offset(j);
+          for (int n = boundary_[k]; n < boundary_[k + 1]; ++n) b.Add(co_.x[at + n], co_.y[at + n]);
+          StoreCircle(b, static_cast<size_t>(j) * K + k, &co_tail_.c);
+          all.Add(b);
+        }
+        StoreCircle(all, static_cast<size_t>(o) * K + k, &object_tail_.c);
       }
     }
   });
+  shared_prefixes_pending_ = true;
+}
+
+const internal::TrajectoryStore& CpuBackend::EgoTrajectories() const {
+  if (!shared_prefixes_pending_) return ego_;
+  // Each tree node's span was simulated on its group's first path: copy it to the others.
+  const int K = tree_.n_instants, L = tree_.n_lateral;
+  for (int profile = 0; profile < tree_.n_profiles; ++profile) {
+    for (int k = 0; k < K; ++k) {
+      const int width = Power(L, K - 1 - k);
+      const size_t n0 = boundary_[k], n_span = boundary_[k + 1] - boundary_[k];
+      for (int g = 0; g < Power(L, k + 1); ++g) {
+        if (node_skipped_[static_cast<size_t>(profile) * node_offset_[K] + node_offset_[k] + g])
+          continue;
+        const int first = profile * tree_.n_paths + g * width;
+        for (int p = 1; p < width; ++p) {
+          for (std::vector<double>* v : {&ego_.x, &ego_.y, &ego_.yaw}) {
+            std::memcpy(v->data() + ego_.Offset(first + p) + n0,
+                        v->data() + ego_.Offset(first) + n0, n_span * sizeof(double));
+          }
+        }
+      }
+    }
+  }
+  shared_prefixes_pending_ = false;
+  return ego_;
 }
 
 void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
@@ -326,63 +355,114 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
   const double ego_hl = ego.half_length, ego_hw = ego.half_width;
   const double ego_r = core::BoundingRadius(ego_hl, ego_hw);
 
-  // First colliding step (1-based) of ego trajectory i and CO trajectory j within span k.
-  auto span_hit = [&](int i, int j, int k, double reach) -> int {
-    const size_t ei = ego_.Offset(i), cj = co_.Offset(j);
-    const size_t eb = static_cast<size_t>(i) * blocks, cb = static_cast<size_t>(j) * blocks;
-    const core::HypothesisSet& co = pb.cos[pb.co_object_of[j]];
-    const double reach2 = reach * reach;
-    for (int q = phase_block_[k]; q < phase_block_[k + 1]; ++q) {
-      const Circle &e = ego_bounds_.c[eb + q], &o = co_bounds_.c[cb + q];
-      const double bx = e.cx - o.cx;
-      const double by = e.cy - o.cy;
-      const double br = e.r + o.r + reach;
-      if (bx * bx + by * by > br * br) continue;  // the whole block is apart
-      for (int n = block_begin_[q]; n < block_begin_[q + 1]; ++n) {
-        const double dx = co_.x[cj + n] - ego_.x[ei + n], dy = co_.y[cj + n] - ego_.y[ei + n];
-        if (dx * dx + dy * dy > reach2) continue;
-        const core::OrientedBox<double> a{ego_.x[ei + n],   ego_.y[ei + n], ego_cos_[ei + n],
-                                          ego_sin_[ei + n], ego_hl,         ego_hw};
-        const core::OrientedBox<double> b{co_.x[cj + n],   co_.y[cj + n],  co_cos_[cj + n],
-                                          co_sin_[cj + n], co.half_length, co.half_width};
-        if (core::BoxesOverlap(a, b)) return n + 1;
+  // Work is split by (ego profile, object, group of at most kTrajectoriesPerTask of its CO
+  // trajectories); each task walks the section tree once for its group, keeping at each node the
+  // trajectories that are still in play: a node's circles are then read once for all of them.
+  constexpr int kTrajectoriesPerTask = 16;
+  struct Task {
+    int profile, object, j0, j1;
+  };
+  std::vector<Task> tasks;
+  for (int profile = 0; profile < ego.n_profiles; ++profile) {
+    for (size_t o = 0; o < pb.cos.size(); ++o) {
+      for (int j = pb.co_offset[o]; j < pb.co_offset[o + 1]; j += kTrajectoriesPerTask) {
+        tasks.push_back(Task{profile, static_cast<int>(o), j,
+                             std::min(pb.co_offset[o + 1], j + kTrajectoriesPerTask)});
       }
     }
-    return 0;
-  };
-
-  // One task per (ego profile, CO trajectory): walk the section tree.
-  internal::ParallelFor(ego.n_profiles * n_co, threads_, [&](int begin, int end) {
+  }
+  const int nodes = node_offset_[K];
+  const int max_span_blocks = [&] {
+    int m = 0;
+    for (int k = 0; k < K; ++k) m = std::max(m, phase_block_[k + 1] - phase_block_[k]);
+    return m;
+  }();
+  internal::ParallelFor(static_cast<int>(tasks.size()), threads_, [&](int begin, int end) {
+    // live[k]: the task's CO trajectories still in play at level k (no hit above, swept bounds
+    // not apart); near: the blocks of the current span where the object's circle meets the
+    // node's.
+    std::vector<int> live[core::kMaxSampleInstants + 1];
+    std::vector<char> near(max_span_blocks);
     for (int task = begin; task < end; ++task) {
-      const int profile = task / n_co, j = task % n_co;
-      const core::HypothesisSet& co = pb.cos[pb.co_object_of[j]];
+      const Task t = tasks[task];
+      const core::HypothesisSet& co = pb.cos[t.object];
       // Centres farther apart than the sum of the bounding radii cannot overlap; the small
-      // margin keeps exactly touching boxes for the exact test.
+      // margin keeps exactly touching boxes for the exact test. The object-wide tests add a
+      // margin far above rounding, as their circles enclose the trajectories' circles.
       const double reach = ego_r + core::BoundingRadius(co.half_length, co.half_width) + 1e-9;
-      const int nodes = node_offset_[K];
+      const double reach2 = reach * reach;
+      const double object_reach = reach + 1e-6;
+      live[0].clear();
+      for (int j = t.j0; j < t.j1; ++j) live[0].push_back(j);
       auto walk = [&](auto&& self, int k, int group) -> void {
         if (k >= core::kMaxSampleInstants) return;  // never: K <= kMaxSampleInstants
-        // Swept bounds: nothing below this node comes near this CO trajectory.
-        const size_t nb = static_cast<size_t>(profile) * nodes + node_offset_[k] + group;
+        const size_t nb = static_cast<size_t>(t.profile) * nodes + node_offset_[k] + group;
         if (node_skipped_[nb]) return;  // out of reach: never simulated
-        const size_t tb = static_cast<size_t>(j) * K + k;
-        const Circle &nc = node_bounds_.c[nb], &tc = co_tail_.c[tb];
-        const double sx = nc.cx - tc.cx, sy = nc.cy - tc.cy;
-        const double sr = nc.r + tc.r + reach;
-        if (sx * sx + sy * sy > sr * sr) return;
+        // Swept bounds: nothing below this node comes near the object, or a trajectory.
+        const Circle& nc = node_bounds_.c[nb];
+        {
+          const Circle& tc = object_tail_.c[static_cast<size_t>(t.object) * K + k];
+          const double sx = nc.cx - tc.cx, sy = nc.cy - tc.cy;
+          const double sr = nc.r + tc.r + object_reach;
+          if (sx * sx + sy * sy > sr * sr) return;
+        }
         const int width = Power(L, K - 1 - k);
-        const int first = profile * ego.n_paths + group * width;
-        const int hit = span_hit(first, j, k, reach);
-        if (hit > 0) {
-          for (int p = 0; p < width; ++p) {
-            (*first_step)[static_cast<size_t>(first + p) * n_co + j] =
-                static_cast<std::int16_t>(hit);
+        const int first = t.profile * ego.n_paths + group * width;
+        const size_t ei = ego_.Offset(first), eb = static_cast<size_t>(first) * blocks;
+        // The span's blocks where the object (all its trajectories) comes near the node.
+        const int q0 = phase_block_[k], q1 = phase_block_[k + 1];
+        bool any_near = false;
+        for (int q = q0; q < q1; ++q) {
+          const Circle &e = ego_bounds_.c[eb + q],
+                       &o = object_blocks_.c[static_cast<size_t>(t.object) * blocks + q];
+          const double bx = e.cx - o.cx, by = e.cy - o.cy, br = e.r + o.r + object_reach;
+          near[q - q0] = bx * bx + by * by <= br * br;
+          any_near |= near[q - q0] != 0;
+        }
+        std::vector<int>& next = live[k + 1];
+        next.clear();
+        for (const int j : live[k]) {
+          const size_t tb = static_cast<size_t>(j) * K + k;
+          const Circle& tc = co_tail_.c[tb];
+          const double sx = nc.cx - tc.cx, sy = nc.cy - tc.cy;
+          const double sr = nc.r + tc.r + reach;
+          if (sx * sx + sy * sy > sr * sr) continue;
+          // First colliding step (1-based) of the node's path and j within span k.
+          int hit = 0;
+          if (any_near) {
+            const size_t cj = co_.Offset(j), cb = static_cast<size_t>(j) * blocks;
+            for (int q = q0; q < q1 && hit == 0; ++q) {
+              if (!near[q - q0]) continue;
+              const Circle &e = ego_bounds_.c[eb + q], &o = co_bounds_.c[cb + q];
+              const double bx = e.cx - o.cx, by = e.cy - o.cy, br = e.r + o.r + reach;
+              if (bx * bx + by * by > br * br) continue;  // the whole block is apart
+              for (int n = block_begin_[q]; n < block_begin_[q + 1]; ++n) {
+                const double dx = co_.x[cj + n] - ego_.x[ei + n],
+                             dy = co_.y[cj + n] - ego_.y[ei + n];
+                if (dx * dx + dy * dy > reach2) continue;
+                const core::OrientedBox<double> a{ego_.x[ei + n],   ego_.y[ei + n],
+                                                  ego_cos_[ei + n], ego_sin_[ei + n],
+                                                  ego_hl,           ego_hw};
+                const core::OrientedBox<double> b{co_.x[cj + n],   co_.y[cj + n],  co_cos_[cj + n],
+                                                  co_sin_[cj + n], co.half_length, co.half_width};
+                if (core::BoxesOverlap(a, b)) {
+                  hit = n + 1;
+                  break;
+                }
+              }
+            }
           }
-          return;
+          if (hit > 0) {
+            for (int p = 0; p < width; ++p) {
+              (*first_step)[static_cast<size_t>(first + p) * n_co + j] =
+                  static_cast<std::int16_t>(hit);
+            }
+          } else {
+            next.push_back(j);
+          }
         }
-        if (k + 1 < K) {
-          for (int c = 0; c < L; ++c) self(self, k + 1, group * L + c);
-        }
+        if (next.empty() || k + 1 >= K) return;
+        for (int c = 0; c < L; ++c) self(self, k + 1, group * L + c);
       };
       for (int g = 0; g < L; ++g) walk(walk, 0, g);
     }

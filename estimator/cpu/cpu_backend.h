@@ -4,23 +4,29 @@
 // bit for bit (tests/estimator/backends_agree_test.cc).
 //  - Ego paths that share their first path sections share the simulation of that prefix: the
 //    section tree (7 -> 49 -> 343 paths) is simulated once per node.
-//  - Collision recognition walks the same tree for each (ego profile, CO trajectory): a node's
-//    span is checked once on its representative path; a hit there is every descendant's first
-//    collision (their poses are identical up to it, and no earlier span hit); otherwise the
-//    children are checked on their spans.
+//    A node's span is simulated on its group's first path only; EgoTrajectories() copies the
+//    shared prefixes to the group's other paths when it is asked for them.
+//  - Collision recognition walks the same tree for each (ego profile, object, group of up to
+//    16 of its trajectories), with the group's trajectories still in play: a node's span is
+//    checked once on its representative path; a hit there is every descendant's first
+//    collision (their poses are identical up to it, and no earlier span hit), and that
+//    trajectory leaves play below the node; the others are checked on the children's spans.
 //  - Each span is split into blocks of a few steps with a bounding circle per trajectory and
 //    block: when two blocks' circles (grown by the boxes' bounding radii) are apart, the block
 //    is skipped; otherwise each step gets a bounding-circle test, then the exact SAT test.
+//    Per node, the blocks where the object's circle (around all its trajectories) is apart
+//    from the node's are skipped for every trajectory of the group.
 //  - Swept bounds prune whole subtrees: each tree node has a circle around every pose of all
-//    its descendant paths from its span to the horizon, each CO trajectory one around its
-//    poses over the same steps; when they are apart, no descendant can collide.
+//    its descendant paths from its span to the horizon, each CO trajectory and each object
+//    one around its poses over the same steps; when they are apart, no descendant can
+//    collide (with that trajectory, or with any of the object's).
 //  - Subtrees out of reach are not simulated (issue 23, item 2): the other vehicles' and
 //    pedestrians' trajectories are simulated first; before a tree node below the first level is
 //    simulated, the ego's reach from its start over the rest of the horizon
 //    (internal::EgoReachAfter, from its parent's end state, by the end of each block) is
-//    checked against each object's circle of that block (all its trajectories); when it meets
-//    none in any block, no
-//    descendant path can collide, and the subtree is neither simulated nor checked. The pair
+//    checked against each object's circle of that block (all its trajectories), once for all
+//    children of a parent; when it meets none in any block, no descendant path can collide,
+//    and the subtree is neither simulated nor checked. The pair
 //    matrix is the same (its entries there are 0 either way); EgoTrajectories() then holds no
 //    poses for the paths of skipped subtrees (ReferenceBackend has every pose).
 //  - cos/sin of every pose computed once; threads over independent tree roots.
@@ -43,7 +49,9 @@ class CpuBackend final : public EstimatorBackend {
   void RecognizeCollisions(const internal::Problem& problem,
                            std::vector<std::int16_t>* first_step) override;
   int Threads() const override { return threads_; }
-  const internal::TrajectoryStore& EgoTrajectories() const override { return ego_; }
+  /** Every ego path's poses (those of skipped subtrees excepted): the shared prefixes are
+   *  copied to each path of a node's group on the first call after GenerateTrajectories. */
+  const internal::TrajectoryStore& EgoTrajectories() const override;
   const internal::TrajectoryStore& CoTrajectories() const override { return co_; }
   /** Tree nodes the last GenerateTrajectories skipped as out of reach, and all its nodes (per
    *  profile, below the first level: the nodes that could be skipped). */
@@ -78,7 +86,12 @@ class CpuBackend final : public EstimatorBackend {
   // Per (collision object set, block): a circle around every pose of all its trajectories in
   // the block.
   BlockBounds object_blocks_;
-  internal::TrajectoryStore ego_;
+  // The last tree's shape, and whether EgoTrajectories() still has prefixes to copy.
+  struct Tree {
+    int n_profiles, n_paths, n_instants, n_lateral;
+  } tree_{};
+  mutable bool shared_prefixes_pending_{false};
+  mutable internal::TrajectoryStore ego_;
   internal::TrajectoryStore co_;
   std::vector<double> ego_cos_, ego_sin_, co_cos_, co_sin_;
   // Step partition: instant k spans steps [boundary_[k], boundary_[k+1]); blocks split each
@@ -91,6 +104,8 @@ class CpuBackend final : public EstimatorBackend {
   // follow those of instant k-1, k's group g at node_offset_[k] + g); co_tail_ per (CO
   // trajectory, instant k) over steps [boundary_[k], n_steps).
   BlockBounds node_bounds_, co_tail_;
+  // object_tail_ per (collision object set, instant k): around its trajectories' co_tail_.
+  BlockBounds object_tail_;
   int node_offset_[core::kMaxSampleInstants + 1]{};
 };
 

@@ -19,22 +19,36 @@ void AssessRisk(const Problem& pb, const Params& params, const std::int16_t* fir
   const int n_obj = static_cast<int>(pb.cos.size());
 
   // Per ego hypothesis: its collision probability and how it splits over steps and objects
-  // (not yet weighted by p_EGO). Rows are independent, so threads write disjoint rows.
+  // (not yet weighted by p_EGO). Each chunk of rows keeps its rows' nonzero shares, in row
+  // order, under its first row (no matrix of rows x steps to allocate and clear); adding them
+  // up chunk after chunk then adds every sum's terms in row order, whatever the thread count.
+  struct Share {
+    int row, index;  // index: a step, or steps + an object
+    double value;
+  };
   std::vector<double> ego_col(n_ego, 0.0);
   std::vector<char> ego_hit(n_ego, 0);
-  std::vector<double> by_step(static_cast<size_t>(n_ego) * steps, 0.0);
-  std::vector<double> by_object(static_cast<size_t>(n_ego) * n_obj, 0.0);
+  std::vector<std::vector<Share>> shares(n_ego);
   ParallelFor(n_ego, threads, [&](int begin, int end) {
     std::vector<int> histogram(steps + 1), events(n_co);
-    std::vector<double> contribution(n_co), hit_mass(n_obj);
+    std::vector<double> contribution(n_co), hit_mass(n_obj), by_step(steps), by_object(n_obj);
+    std::vector<Share>& out = shares[begin];
     for (int i = begin; i < end; ++i) {
+      const std::int16_t* row = first_step + static_cast<size_t>(i) * n_co;
+      if (std::all_of(row, row + n_co, [](std::int16_t s) { return s == 0; })) continue;
       int n_events = 0;
-      ego_col[i] = core::SplitEgoRisk(
-          first_step + static_cast<size_t>(i) * n_co, n_co, steps, n_obj, pb.co_probability.data(),
-          pb.co_object_of.data(), histogram.data(), events.data(), contribution.data(),
-          hit_mass.data(), by_step.data() + static_cast<size_t>(i) * steps,
-          by_object.data() + static_cast<size_t>(i) * n_obj, &n_events);
+      ego_col[i] = core::SplitEgoRisk(row, n_co, steps, n_obj, pb.co_probability.data(),
+                                      pb.co_object_of.data(), histogram.data(), events.data(),
+                                      contribution.data(), hit_mass.data(), by_step.data(),
+                                      by_object.data(), &n_events);
       ego_hit[i] = n_events > 0;
+      if (n_events == 0) continue;
+      for (int n = 0; n < steps; ++n) {
+        if (by_step[n] != 0.0) out.push_back(Share{i, n, by_step[n]});
+      }
+      for (int o = 0; o < n_obj; ++o) {
+        if (by_object[o] != 0.0) out.push_back(Share{i, steps + o, by_object[o]});
+      }
     }
   });
 
@@ -43,14 +57,16 @@ void AssessRisk(const Problem& pb, const Params& params, const std::int16_t* fir
   result->objects = pb.objects;
   for (ObjectResult& o : result->objects) o.contribution = 0.0;
   for (int i = 0; i < n_ego; ++i) {
-    if (!ego_hit[i]) continue;
-    const double p = pb.ego_probability[i];
-    result->p_collision += p * ego_col[i];
-    for (int n = 0; n < steps; ++n) {
-      result->first_collision_pmf[n] += p * by_step[static_cast<size_t>(i) * steps + n];
-    }
-    for (int o = 0; o < n_obj; ++o) {
-      result->objects[o].contribution += p * by_object[static_cast<size_t>(i) * n_obj + o];
+    if (ego_hit[i]) result->p_collision += pb.ego_probability[i] * ego_col[i];
+  }
+  for (const std::vector<Share>& chunk : shares) {
+    for (const Share& s : chunk) {
+      const double p = pb.ego_probability[s.row];
+      if (s.index < steps) {
+        result->first_collision_pmf[s.index] += p * s.value;
+      } else {
+        result->objects[s.index - steps].contribution += p * s.value;
+      }
     }
   }
   result->ego_probability = pb.ego_probability;

@@ -11,6 +11,7 @@
 
 #include "bench/discrimination_scenes.h"
 #include "bench/paper_scenes.h"
+#include "core/chronological_risk.h"
 #include "cpu/reference_backend.h"
 #include "src/problem.h"
 #include "test_scenes.h"
@@ -148,6 +149,51 @@ TEST(Estimator, ThreadCountDoesNotChangeTheResult) {
     }
     EXPECT_EQ(r.p_collision, base.p_collision) << threads;
     EXPECT_EQ(r.first_collision_step, base.first_collision_step) << threads;
+    EXPECT_EQ(r.first_collision_pmf, base.first_collision_pmf) << threads;
+    ASSERT_EQ(r.objects.size(), base.objects.size());
+    for (size_t o = 0; o < r.objects.size(); ++o)
+      EXPECT_EQ(r.objects[o].contribution, base.objects[o].contribution) << threads;
+  }
+}
+
+// p_cra, the first-collision pmf and the objects' shares are the row-by-row definition: each
+// ego hypothesis's split (core::SplitEgoRisk) weighted by p_EGO and added up in row order,
+// every step and object included; bit for bit, on 1 and 2 threads.
+TEST(Estimator, RiskSumsAreTheRowByRowDefinition) {
+  const Scene scene = bench::PaperSceneS2();
+  const internal::Problem pb = internal::BuildProblem(scene, Params{});
+  const int n_co = pb.CoTrajectories(), steps = pb.Steps();
+  const int n_obj = static_cast<int>(pb.cos.size());
+  for (int threads : {1, 2}) {
+    EstimatorOptions opt;
+    opt.threads = threads;
+    opt.keep_pair_matrix = true;
+    Estimator estimator(Params{}, opt);
+    const Result r = estimator.Estimate(scene);
+    ASSERT_EQ(r.counts.co_trajectories, n_co);
+    ASSERT_EQ(r.objects.size(), static_cast<size_t>(n_obj));
+    double p = 0.0;
+    std::vector<double> pmf(steps, 0.0), share(n_obj, 0.0);
+    std::vector<int> histogram(steps + 1), events(n_co);
+    std::vector<double> contribution(n_co), hit_mass(n_obj), by_step(steps), by_object(n_obj);
+    int rows_hit = 0;
+    for (int i = 0; i < pb.EgoTrajectories(); ++i) {
+      int n_events = 0;
+      const double col = core::SplitEgoRisk(
+          r.first_collision_step.data() + static_cast<size_t>(i) * n_co, n_co, steps, n_obj,
+          pb.co_probability.data(), pb.co_object_of.data(), histogram.data(), events.data(),
+          contribution.data(), hit_mass.data(), by_step.data(), by_object.data(), &n_events);
+      if (n_events == 0) continue;
+      ++rows_hit;
+      const double pe = pb.ego_probability[i];
+      p += pe * col;
+      for (int n = 0; n < steps; ++n) pmf[n] += pe * by_step[n];
+      for (int o = 0; o < n_obj; ++o) share[o] += pe * by_object[o];
+    }
+    ASSERT_GT(rows_hit, 1);
+    EXPECT_EQ(r.p_collision, p) << threads;
+    EXPECT_EQ(r.first_collision_pmf, pmf) << threads;
+    for (int o = 0; o < n_obj; ++o) EXPECT_EQ(r.objects[o].contribution, share[o]) << o;
   }
 }
 
