@@ -358,7 +358,7 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
   // Work is split by (ego profile, object, group of at most kTrajectoriesPerTask of its CO
   // trajectories); each task walks the section tree once for its group, keeping at each node the
   // trajectories that are still in play: a node's circles are then read once for all of them.
-  constexpr int kTrajectoriesPerTask = 16;
+  constexpr int kTrajectoriesPerTask = 64;
   struct Task {
     int profile, object, j0, j1;
   };
@@ -377,13 +377,15 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
     for (int k = 0; k < K; ++k) m = std::max(m, phase_block_[k + 1] - phase_block_[k]);
     return m;
   }();
-  internal::ParallelFor(static_cast<int>(tasks.size()), threads_, [&](int begin, int end) {
+  // Tasks differ in cost by orders of magnitude (an object near the ego or far from it): each
+  // thread takes the next one when it is free. Each task writes only its own entries.
+  internal::ParallelForDynamic(static_cast<int>(tasks.size()), threads_, [&](int task) {
     // live[k]: the task's CO trajectories still in play at level k (no hit above, swept bounds
     // not apart); near: the blocks of the current span where the object's circle meets the
     // node's.
     std::vector<int> live[core::kMaxSampleInstants + 1];
     std::vector<char> near(max_span_blocks);
-    for (int task = begin; task < end; ++task) {
+    {
       const Task t = tasks[task];
       const core::HypothesisSet& co = pb.cos[t.object];
       // Centres farther apart than the sum of the bounding radii cannot overlap; the small

@@ -7,7 +7,7 @@
 //    A node's span is simulated on its group's first path only; EgoTrajectories() copies the
 //    shared prefixes to the group's other paths when it is asked for them.
 //  - Collision recognition walks the same tree for each (ego profile, object, group of up to
-//    16 of its trajectories), with the group's trajectories still in play: a node's span is
+//    64 of its trajectories; threads take these tasks as they come free), with the group's trajectories still in play: a node's span is
 //    checked once on its representative path; a hit there is every descendant's first
 //    collision (their poses are identical up to it, and no earlier span hit), and that
 //    trajectory leaves play below the node; the others are checked on the children's spans.

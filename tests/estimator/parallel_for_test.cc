@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace criticality::internal {
@@ -47,6 +48,35 @@ TEST(ParallelFor, AnErrorInAChunkIsRethrownAndThePoolGoesOn) {
   std::atomic<int> sum{0};
   ParallelFor(100, 3, [&](int begin, int end) { sum += end - begin; });
   EXPECT_EQ(sum.load(), 100);
+}
+
+TEST(ParallelFor, DynamicTasksEachOnceAndErrorsRethrown) {
+  for (int threads : {1, 2, 3, 8}) {
+    for (int n : {0, 1, 7, 1000}) {
+      std::vector<std::atomic<int>> seen(n);
+      ParallelForDynamic(n, threads, [&](int i) { seen[i]++; });
+      for (int i = 0; i < n; ++i) EXPECT_EQ(seen[i].load(), 1) << threads << " " << n << " " << i;
+    }
+  }
+  EXPECT_THROW(ParallelForDynamic(100, 3,
+                                  [](int i) {
+                                    if (i == 50) throw std::runtime_error("task 50");
+                                  }),
+               std::runtime_error);
+  std::atomic<int> sum{0};
+  ParallelForDynamic(100, 3, [&](int) { ++sum; });
+  EXPECT_EQ(sum.load(), 100);
+}
+
+TEST(ParallelFor, HelpersThatSleptTakeTheNextJob) {
+  // Past the spin window the helpers sleep on the condition variable: a job must still reach
+  // them (a lost wake-up would hang here, and the ctest timeout would fail it).
+  for (int c = 0; c < 5; ++c) {
+    std::this_thread::sleep_for(2 * WorkerPool::kSpin);
+    std::atomic<int> sum{0};
+    ParallelFor(64, 3, [&](int begin, int end) { sum += end - begin; });
+    EXPECT_EQ(sum.load(), 64);
+  }
 }
 
 }  // namespace
