@@ -103,9 +103,13 @@ struct HypothesisSet {
 };
 
 /** The course curvature a body on its path is bent by (HypothesisSet::body_on_path): the yaw
- *  rate over the speed, the speed taken as at least 1 m/s (a standing vehicle's measured yaw
- *  rate is 0, and so is its curvature here, at its start and in its prediction alike). */
-CRIT_HD double BodyCurvature(double yaw_rate, double v) { return yaw_rate / (v > 1.0 ? v : 1.0); }
+ *  rate over the speed above 1 m/s; below, the yaw rate times the speed, down to 0 at a stand
+ *  (there a yaw rate tells no path: a standing vehicle's measured yaw rate would otherwise put
+ *  its model's centre a sagitta off, and its prediction, whose yaw rate the models take to 0,
+ *  would not come back). */
+CRIT_HD double BodyCurvature(double yaw_rate, double v) {
+  return v > 1.0 ? yaw_rate / v : yaw_rate * v;
+}
 
 /** How far the centre of the chord of a body's path lies toward the turn's centre from the
  *  path (signed: positive to the left, as the curvature): kappa c^2 / 8 for a box of length c,

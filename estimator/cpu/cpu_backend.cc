@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "core/oriented_box.h"
 #include "core/trajectory_generation.h"
@@ -162,10 +163,10 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   // Ego: the section tree, one node per (profile, instant k, group of paths that share their
   // first k + 1 sections), level by level. Each node starts from its parent's end state (the
   // profile's initial state at the top) and is simulated over its span on its group's first
-  // path, with its cos/sin and block bounds; the span's poses are then copied to the group's
-  // other paths. Nodes of one profile and level, whatever their parents, go together into
-  // SIMD lanes (simd_), up to kMaxLateralSamples per call: 3 lateral samples give 3, 9, 27
-  // nodes per level, 1, 2, 4 vectors of 8 instead of 1, 3, 9. Below the first level a node
+  // path, with its cos/sin and block bounds (EgoTrajectories() copies the span's poses to the
+  // group's other paths when asked). Nodes of one profile and level, whatever their parents, go
+  // together into SIMD lanes (simd_), up to kMaxLateralSamples per call: 3 lateral samples give 3,
+  // 9, 27 nodes per level, 1, 2, 4 vectors of 8 instead of 1, 3, 9. Below the first level a node
   // whose reach meets no object is skipped with its subtree.
   node_offset_[0] = 0;
   for (int k = 0; k < K; ++k) node_offset_[k + 1] = node_offset_[k] + Power(L, k + 1);
@@ -199,12 +200,20 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   std::vector<core::SimulationState> parents(ego.n_profiles,
                                              core::InitialSimulationState(ego, pb.sim));
   std::vector<core::SimulationState> nodes_state;
+  // Each node's end position in the scene frame (its span's last pose; its parent's when the
+  // span has no step, as when two sample instants fall within one step).
+  struct Position {
+    double x, y;
+  };
+  std::vector<Position> parents_end(ego.n_profiles, Position{ego.X_WL.x, ego.X_WL.y});
+  std::vector<Position> nodes_end;
   std::vector<std::pair<int, std::vector<int>>> packs;  // (profile, the nodes it simulates)
   for (int k = 0; k < K && k < core::kMaxSampleInstants; ++k) {
     const int count = Power(L, k + 1);      // nodes per profile at this level
     const int width = Power(L, K - 1 - k);  // paths below each node
     const int n0 = boundary_[k], n1 = boundary_[k + 1];
     nodes_state.resize(static_cast<size_t>(ego.n_profiles) * count);
+    nodes_end.resize(nodes_state.size());
     // The nodes to simulate, in packs of kPack per profile (those of skipped parents and those
     // out of reach left out).
     packs.clear();
@@ -218,12 +227,9 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
               static_cast<size_t>(profile) * nodes + node_offset_[k - 1] + parent;
           skip = node_skipped_[parent_node] != 0;
           if (!skip && skip_out_of_reach_) {
-            // The parent's end pose, stored on its group's first path (the scene's at step 0).
-            const size_t at = ego_.Offset(profile * ego.n_paths + parent * width * L) + n0;
+            const size_t at = static_cast<size_t>(profile) * (count / L) + parent;
             checked_nodes_ += L;
-            skip = out_of_reach(k, n0 > 0 ? ego_.x[at - 1] : ego.X_WL.x,
-                                n0 > 0 ? ego_.y[at - 1] : ego.X_WL.y,
-                                parents[static_cast<size_t>(profile) * (count / L) + parent]);
+            skip = out_of_reach(k, parents_end[at].x, parents_end[at].y, parents[at]);
           }
         }
         for (int g = parent * L; g < (parent + 1) * L; ++g) {
@@ -269,12 +275,17 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
           const int g = group[l];
           nodes_state[static_cast<size_t>(profile) * count + g] = span.state[l];
           const int first = profile * ego.n_paths + g * width;
+          const size_t last = ego_.Offset(first) + n1 - 1;
+          nodes_end[static_cast<size_t>(profile) * count + g] =
+              n1 > n0 ? Position{ego_.x[last], ego_.y[last]}
+                      : parents_end[static_cast<size_t>(profile) * (count / L) + g / L];
           FinishSpan(ego_, &ego_cos_, &ego_sin_, &ego_bounds_, first, n0, n1, phase_block_[k],
                      phase_block_[k + 1], lanes);
         }
       }
     });
     parents.swap(nodes_state);
+    parents_end.swap(nodes_end);
   }
 
   // Swept bounds of the tree nodes (post-order: a node's span plus its children's bounds;
@@ -329,9 +340,17 @@ const internal::TrajectoryStore& CpuBackend::EgoTrajectories() const {
       const int width = Power(L, K - 1 - k);
       const size_t n0 = boundary_[k], n_span = boundary_[k + 1] - boundary_[k];
       for (int g = 0; g < Power(L, k + 1); ++g) {
-        if (node_skipped_[static_cast<size_t>(profile) * node_offset_[K] + node_offset_[k] + g])
-          continue;
         const int first = profile * tree_.n_paths + g * width;
+        if (node_skipped_[static_cast<size_t>(profile) * node_offset_[K] + node_offset_[k] + g]) {
+          // Never simulated: no pose, rather than one left from an earlier scene.
+          for (int p = 0; p < width; ++p) {
+            for (std::vector<double>* v : {&ego_.x, &ego_.y, &ego_.yaw}) {
+              std::fill_n(v->data() + ego_.Offset(first + p) + n0, n_span,
+                          std::numeric_limits<double>::quiet_NaN());
+            }
+          }
+          continue;
+        }
         for (int p = 1; p < width; ++p) {
           for (std::vector<double>* v : {&ego_.x, &ego_.y, &ego_.yaw}) {
             std::memcpy(v->data() + ego_.Offset(first + p) + n0,

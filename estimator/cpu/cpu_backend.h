@@ -7,10 +7,11 @@
 //    A node's span is simulated on its group's first path only; EgoTrajectories() copies the
 //    shared prefixes to the group's other paths when it is asked for them.
 //  - Collision recognition walks the same tree for each (ego profile, object, group of up to
-//    64 of its trajectories; threads take these tasks as they come free), with the group's trajectories still in play: a node's span is
-//    checked once on its representative path; a hit there is every descendant's first
-//    collision (their poses are identical up to it, and no earlier span hit), and that
-//    trajectory leaves play below the node; the others are checked on the children's spans.
+//    64 of its trajectories; threads take these tasks as they come free), with the group's
+//    trajectories still in play: a node's span is checked once on its representative path; a hit
+//    there is every descendant's first collision (their poses are identical up to it, and no
+//    earlier span hit), and that trajectory leaves play below the node; the others are checked on
+//    the children's spans.
 //  - Each span is split into blocks of a few steps with a bounding circle per trajectory and
 //    block: when two blocks' circles (grown by the boxes' bounding radii) are apart, the block
 //    is skipped; otherwise each step gets a bounding-circle test, then the exact SAT test.
@@ -27,8 +28,8 @@
 //    checked against each object's circle of that block (all its trajectories), once for all
 //    children of a parent; when it meets none in any block, no descendant path can collide,
 //    and the subtree is neither simulated nor checked. The pair
-//    matrix is the same (its entries there are 0 either way); EgoTrajectories() then holds no
-//    poses for the paths of skipped subtrees (ReferenceBackend has every pose).
+//    matrix is the same (its entries there are 0 either way); EgoTrajectories() then holds NaN
+//    for the paths of skipped subtrees (ReferenceBackend has every pose).
 //  - cos/sin of every pose computed once; threads over independent tree roots.
 //  - With simd (the default), the nodes of one profile and level, and another vehicle's paths
 //    of one profile, are simulated together in SIMD lanes (cpu/sibling_steps.h), with cos/sin
@@ -49,12 +50,13 @@ class CpuBackend final : public EstimatorBackend {
   void RecognizeCollisions(const internal::Problem& problem,
                            std::vector<std::int16_t>* first_step) override;
   int Threads() const override { return threads_; }
-  /** Every ego path's poses (those of skipped subtrees excepted): the shared prefixes are
-   *  copied to each path of a node's group on the first call after GenerateTrajectories. */
+  /** Every ego path's poses (NaN in skipped subtrees): the shared prefixes are copied to each
+   *  path of a node's group on the first call after GenerateTrajectories. */
   const internal::TrajectoryStore& EgoTrajectories() const override;
   const internal::TrajectoryStore& CoTrajectories() const override { return co_; }
-  /** Tree nodes the last GenerateTrajectories skipped as out of reach, and all its nodes (per
-   *  profile, below the first level: the nodes that could be skipped). */
+  /** Tree nodes the last GenerateTrajectories skipped (out of reach, or below a skipped node),
+   *  and the nodes whose reach it tested (below the first level, children of nodes that were
+   *  simulated; 0 with skip_out_of_reach off). */
   int SkippedNodes() const { return skipped_nodes_; }
   int CheckedNodes() const { return checked_nodes_; }
 

@@ -403,7 +403,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       }
       if (h.body_on_path) {  // core::PathSagitta of core::BodyCurvature, across the course
         const double c = 2.0 * h.half_length, limit = 2.0 / c;
-        const V kappa = hn::Div(nyr, hn::Max(nv, one));
+        const V kappa = hn::IfThenElse(hn::Gt(nv, one), hn::Div(nyr, nv), hn::Mul(nyr, nv));
         const V e = hn::Mul(ClampV(kappa, hn::Set(d, -limit), hn::Set(d, limit)),
                             hn::Set(d, 0.125 * c * c));
         px = hn::Sub(px, hn::Mul(course_ye, e));

@@ -7,6 +7,7 @@
 #include "cpu/scene_pool.h"
 #include "criticality/errors.h"
 #include "src/backend.h"
+#include "src/parallel_for.h"
 #include "src/problem.h"
 #include "src/reach_filter.h"
 #include "src/risk_assessment.h"
@@ -144,6 +145,7 @@ void EstimatorBackend::Run(const internal::Problem& problem, const Params& param
   t = std::chrono::steady_clock::now();
   internal::AssessBodies(problem, params, &first_step, Threads(), result);
   result->times.risk_ms = MsSince(t);
+  internal::CallersPool().Rest();  // no helper spins while the caller is elsewhere
   if (keep_pair_matrix) result->first_collision_step = std::move(first_step);
 }
 

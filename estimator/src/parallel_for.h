@@ -23,7 +23,9 @@ namespace criticality::internal {
  *  Waking a sleeping thread costs tens of microseconds on virtual machines (75 us measured on
  *  the development VM, per call), several times per estimate: so a helper, and the caller
  *  waiting for the helpers, first spin for up to kSpin on the job counter before they sleep
- *  on the condition variable. An estimate's parallel loops follow each other within that time. */
+ *  on the condition variable. An estimate's parallel loops follow each other within that time;
+ *  Rest() at the end of an estimate sends spinning helpers to sleep at once, so that they do
+ *  not take a core from SUMO (or anything else) between estimates. */
 class WorkerPool {
  public:
   static constexpr std::chrono::microseconds kSpin{250};
@@ -50,6 +52,7 @@ class WorkerPool {
       }
       job_ = &job;
       parts_ = parts;
+      resting_.store(false);
       pending_.store(parts - 1);
       generation_.fetch_add(1);
     }
@@ -67,6 +70,9 @@ class WorkerPool {
     if (error) std::rethrow_exception(error);
   }
 
+  /** Helpers waiting for a job sleep now instead of spinning (until the next Run). */
+  void Rest() { resting_.store(true, std::memory_order_release); }
+
  private:
   // Busy-waits until ready() or kSpin has passed.
   template <class Ready>
@@ -81,7 +87,10 @@ class WorkerPool {
   void Loop(int index, std::uint64_t seen) {
     for (;;) {
       const std::function<void(int)>* job = nullptr;
-      SpinUntil([&] { return generation_.load(std::memory_order_acquire) != seen; });
+      SpinUntil([&] {
+        return generation_.load(std::memory_order_acquire) != seen ||
+               resting_.load(std::memory_order_acquire);
+      });
       {
         std::unique_lock<std::mutex> lock(m_);
         start_.wait(lock, [&] { return stop_ || generation_.load() != seen; });
@@ -105,6 +114,7 @@ class WorkerPool {
   int parts_{0};
   std::atomic<int> pending_{0};
   std::atomic<std::uint64_t> generation_{0};
+  std::atomic<bool> resting_{false};
   bool stop_{false};
 };
 

@@ -145,7 +145,8 @@ void OptionTable::Estimator(DriverOptions* o) {
       "knowledge too: plugin/README.md, \"Pedestrians on the footway\")")(
       "bodies-on-path", po::bool_switch(&raw.bodies_on_path),
       "experimental (ours, off by default: it did not help the held-out networks as a whole, "
-      "bench/RESULTS.md): every vehicle is SUMO's box of it (front to back), predicted in a "
+      "bench/RESULTS.md): every vehicle of one box (no carriages) is SUMO's box of it (front to "
+      "back), predicted in a "
       "turn centred on the chord of its path, not on the path, where its outer corners stand "
       "out of its lane (plugin/README.md, \"Bodies in a turn\")")(
       "bent-bodies", po::bool_switch(&raw.bent_bodies),

@@ -46,8 +46,9 @@ struct SceneConfig {
    *  stands, which sensors see, so observable_only keeps it. Off: every vehicle up to 20 m is
    *  one box of its length along SUMO's angle. */
   bool bent_bodies{false};
-  /** --bodies-on-path (experimental, off: measured, not kept; bench/RESULTS.md): every
-   *  vehicle's box is SUMO's (front to back, BodyLengthOf, centred between them) and the
+  /** --bodies-on-path (experimental, off: measured, not kept; bench/RESULTS.md): the box
+   *  of every vehicle of one box (no carriages) is SUMO's (front to back, BodyLengthOf,
+   *  centred between them) and the
    *  estimator predicts it so (Scene::bodies_on_path: centred on the chord of the path its
    *  centre follows). Off: a box of the vehicle's length from its front along SUMO's angle,
    *  predicted centred on its path. */
