@@ -200,6 +200,7 @@ Result Estimator::Estimate(const Scene& scene) {
   if (shortcut.none_left) {
     ReachShortcut::Answer(problem, params_, &result);
   } else {
+    internal::CallersPool().SetSpin(options_.spin_wait);
     backend_->Run(problem, params_, options_.keep_pair_matrix, &result);
   }
   shortcut.Restore(built, &result);
@@ -240,6 +241,7 @@ std::vector<Result> Estimator::EstimateBatch(const std::vector<Scene>& scenes) {
   }
   if (!views.empty()) {
     std::vector<Result> ran(views.size());
+    internal::CallersPool().SetSpin(options_.spin_wait);
     backend_->RunBatch(views, params_, options_.keep_pair_matrix, &ran);
     for (size_t i = 0; i < run.size(); ++i) results[run[i]] = std::move(ran[i]);
   }

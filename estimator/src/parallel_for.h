@@ -72,11 +72,14 @@ class WorkerPool {
 
   /** Helpers waiting for a job sleep now instead of spinning (until the next Run). */
   void Rest() { resting_.store(true, std::memory_order_release); }
+  /** Whether the helpers and the waiting caller spin before they sleep (default true). */
+  void SetSpin(bool spin) { spin_.store(spin, std::memory_order_release); }
 
  private:
-  // Busy-waits until ready() or kSpin has passed.
+  // Busy-waits until ready() or kSpin has passed (not at all when spinning is off).
   template <class Ready>
-  static void SpinUntil(Ready ready) {
+  void SpinUntil(Ready ready) const {
+    if (!spin_.load(std::memory_order_acquire)) return;
     const auto until = std::chrono::steady_clock::now() + kSpin;
     for (int n = 0;; ++n) {
       if (ready()) return;
@@ -115,6 +118,7 @@ class WorkerPool {
   std::atomic<int> pending_{0};
   std::atomic<std::uint64_t> generation_{0};
   std::atomic<bool> resting_{false};
+  std::atomic<bool> spin_{true};
   bool stop_{false};
 };
 

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iostream>
 #include <stdexcept>
+#include <thread>
 
 #include "plugin/options/config_file.h"
 #include "plugin/options/option_table.h"
@@ -248,6 +249,17 @@ void Derive(DriverOptions* o) {
   scenes.all_vehicles = observe.all_vehicles;
   o->act.closed_loop.brake.latency_s = o->params.latency_s;  // the escape routes' braking
   o->act.closed_loop.brake.jerk_mps3 = o->params.jerk_mps3;
+  // Pipelined, SUMO's step runs beside the estimate: the estimator's helper threads sleep
+  // between its parallel loops instead of spinning on SUMO's core, and --threads 0 with named
+  // egos (one small estimate per step) leaves SUMO a core. A fleet (--all-vehicles) keeps
+  // every core: there the estimates are nearly all of the step (bench/RESULTS.md).
+  if (o->run.pipeline && o->act.act != Act::kBrake) {
+    o->estimator.spin_wait = false;
+    if (o->estimator.threads == 0 && !observe.all_vehicles) {
+      const unsigned cores = std::thread::hardware_concurrency();
+      o->estimator.threads = cores > 1 ? static_cast<int>(cores) - 1 : 1;
+    }
+  }
 }
 
 }  // namespace

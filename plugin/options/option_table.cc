@@ -158,7 +158,8 @@ void OptionTable::Estimator(DriverOptions* o) {
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(
       "threads", po::value(&o->estimator.threads)->default_value(0, "0 = all cores"),
-      "estimator threads")(
+      "estimator threads; 0: all cores, but with named egos and the pipelined driver (--act "
+      "none or warn) all but one, which SUMO's step takes")(
       "no-pipeline", po::bool_switch(&raw.no_pipeline),
       "estimate each step before SUMO makes the next; by default, under --act none and warn, "
       "step k is estimated on a thread of its own while SUMO makes step k+1 (the same results, "

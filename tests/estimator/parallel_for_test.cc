@@ -71,12 +71,14 @@ TEST(ParallelFor, DynamicTasksEachOnceAndErrorsRethrown) {
 TEST(ParallelFor, HelpersThatSleptTakeTheNextJob) {
   // Past the spin window the helpers sleep on the condition variable: a job must still reach
   // them (a lost wake-up would hang here, and the ctest timeout would fail it).
-  for (int c = 0; c < 5; ++c) {
+  for (int c = 0; c < 6; ++c) {
+    CallersPool().SetSpin(c % 2 == 0);  // also with spinning off: they sleep at once
     std::this_thread::sleep_for(2 * WorkerPool::kSpin);
     std::atomic<int> sum{0};
     ParallelFor(64, 3, [&](int begin, int end) { sum += end - begin; });
     EXPECT_EQ(sum.load(), 64);
   }
+  CallersPool().SetSpin(true);
 }
 
 }  // namespace

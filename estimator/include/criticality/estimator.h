@@ -60,6 +60,12 @@ struct EstimatorOptions {
    *  (cpu/cpu_backend.h). Changes nothing in the result; false: every ego path is simulated
    *  (for comparing the cost). */
   bool skip_out_of_reach{true};
+  /** cpu backend on more than one thread: between an estimate's parallel loops the helper
+   *  threads (and the caller waiting for them) spin for up to 250 us before they sleep
+   *  (src/parallel_for.h: waking a sleeping thread costs tens of microseconds). false: they
+   *  sleep at once, for callers that share the cores with other work meanwhile (the pipelined
+   *  driver, where SUMO's step runs beside the estimate). */
+  bool spin_wait{true};
 };
 
 class EstimatorBackend;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 #include <vector>
 
 #include "plugin/script/scenario_event.h"
@@ -109,6 +110,31 @@ TEST(DriverOptions, ScenarioMetadata) {
                std::invalid_argument);
   EXPECT_THROW(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--quiet-until", "-1"}),
                std::invalid_argument);
+}
+
+TEST(DriverOptions, ThreadsBesideSumo) {
+  // Pipelined (--act warn, the default loop), named egos: --threads 0 leaves SUMO a core and
+  // the estimator's helpers do not spin; a fleet keeps every core; --act brake (SUMO and the
+  // estimate take turns) and --no-pipeline keep both; a number given stays.
+  const unsigned cores = std::thread::hardware_concurrency();
+  const int all_but_one = cores > 1 ? static_cast<int>(cores) - 1 : 1;
+  auto opts = [](std::vector<const char*> extra) {
+    std::vector<const char*> args{"--connect", "h:1", "--output", "x"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return Parse(args).options.estimator;
+  };
+  const EstimatorOptions named = opts({"--ego", "e"});
+  EXPECT_EQ(named.threads, all_but_one);
+  EXPECT_FALSE(named.spin_wait);
+  const EstimatorOptions fleet = opts({"--all-vehicles"});
+  EXPECT_EQ(fleet.threads, 0);
+  EXPECT_FALSE(fleet.spin_wait);
+  for (const char* serial : {"--no-pipeline", "--act=brake"}) {
+    const EstimatorOptions o = opts({"--ego", "e", serial});
+    EXPECT_EQ(o.threads, 0) << serial;
+    EXPECT_TRUE(o.spin_wait) << serial;
+  }
+  EXPECT_EQ(opts({"--ego", "e", "--threads", "2"}).threads, 2);
 }
 
 TEST(DriverOptions, PresetAblationsAndWarningEstimate) {
