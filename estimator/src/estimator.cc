@@ -35,8 +35,8 @@ struct ReachShortcut {
   bool any{false};
   bool none_left{false};
 
-  internal::Problem Apply(const internal::Problem& pb) {
-    drop = internal::OutOfReach(pb);
+  internal::Problem Apply(const internal::Problem& pb, bool simd) {
+    drop = internal::OutOfReach(pb, simd);
     for (char d : drop) any = any || d;
     internal::Problem kept = any ? internal::WithoutObjects(pb, drop) : pb;
     none_left = kept.cos.empty();
@@ -194,7 +194,8 @@ Result Estimator::Estimate(const Scene& scene) {
   Result result;
   const internal::Problem built = internal::BuildProblem(scene, params_);
   ReachShortcut shortcut;
-  const internal::Problem problem = options_.reach_shortcut ? shortcut.Apply(built) : built;
+  const internal::Problem problem =
+      options_.reach_shortcut ? shortcut.Apply(built, options_.simd) : built;
   result.times.street_ms = MsSince(t0);
 
   if (shortcut.none_left) {
@@ -225,7 +226,8 @@ std::vector<Result> Estimator::EstimateBatch(const std::vector<Scene>& scenes) {
   problems.reserve(scenes.size());
   for (size_t k = 0; k < scenes.size(); ++k) {
     built.push_back(internal::BuildProblem(scenes[k], params_));
-    problems.push_back(options_.reach_shortcut ? shortcuts[k].Apply(built.back()) : built.back());
+    problems.push_back(options_.reach_shortcut ? shortcuts[k].Apply(built.back(), options_.simd)
+                                               : built.back());
   }
   const double street_ms = MsSince(t0);
   std::vector<Result> results(scenes.size());

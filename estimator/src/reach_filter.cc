@@ -6,6 +6,7 @@
 #include "core/oriented_box.h"
 #include "core/trajectory_generation.h"
 #include "core/vehicle_params.h"
+#include "cpu/sibling_steps.h"
 
 namespace criticality::internal {
 namespace {
@@ -88,24 +89,51 @@ double EgoReachAfter(const core::HypothesisSet& ego, const core::SimulationConfi
   return t.stretch * travel + t.dv_max * m * ego.position_lead + t.turned + t.chord;
 }
 
-std::vector<char> OutOfReach(const Problem& pb) {
+std::vector<char> OutOfReach(const Problem& pb, bool simd) {
   const std::vector<double> bound = EgoReachBound(pb.ego, pb.sim);
   const double ego_r = core::BoundingRadius(pb.ego.half_length, pb.ego.half_width);
   const double x0 = pb.ego.X_WL.x, y0 = pb.ego.X_WL.y;
   const int steps = pb.sim.n_steps;
   std::vector<double> x(steps), y(steps), yaw(steps);
+  std::vector<double> lx, ly, lyaw;  // the paths of one profile in SIMD lanes
   // Whether any hypothesis of set s can come near any ego hypothesis.
   auto reachable = [&](size_t s) {
     const core::HypothesisSet& h = pb.cos[s];
     const double r = ego_r + core::BoundingRadius(h.half_length, h.half_width) + kMarginM;
     // Starting within the ego's final reach: kept without simulating (it would be, or nearly).
     if (std::hypot(h.X_WL.x - x0, h.X_WL.y - y0) <= bound[steps] + r) return true;
+    auto near = [&](const double* px, const double* py) {
+      for (int n = 0; n < steps; ++n) {  // pose n is after n + 1 steps
+        if (!(std::hypot(px[n] - x0, py[n] - y0) > bound[n + 1] + r)) return true;
+      }
+      return false;
+    };
+    if (simd && SiblingStepsApply(h, pb.sim)) {
+      // The paths of each profile together, as the CPU backend simulates them (within 1e-9 m
+      // of the scalar poses, far inside the margin).
+      const size_t n = static_cast<size_t>(h.n_paths) * steps;
+      lx.resize(n);
+      ly.resize(n);
+      lyaw.resize(n);
+      for (int profile = 0; profile < h.n_profiles; ++profile) {
+        SiblingSpan span = SpanOf(h, pb.sim, profile, 0, steps, h.n_paths);
+        for (int path = 0; path < h.n_paths; ++path) {
+          const size_t at = static_cast<size_t>(path) * steps;
+          SetLane(&span, path, path, core::InitialSimulationState(h, pb.sim), &lx[at], &ly[at],
+                  &lyaw[at]);
+        }
+        SimulateSiblingSteps(&span);
+        for (int path = 0; path < h.n_paths; ++path) {
+          const size_t at = static_cast<size_t>(path) * steps;
+          if (near(&lx[at], &ly[at])) return true;
+        }
+      }
+      return false;
+    }
     for (int t = 0; t < h.Trajectories(); ++t) {
       core::SimulateHypothesis(h, pb.sim, t / h.n_paths, t % h.n_paths, x.data(), y.data(),
                                yaw.data());
-      for (int n = 0; n < steps; ++n) {  // pose n is after n + 1 steps
-        if (!(std::hypot(x[n] - x0, y[n] - y0) > bound[n + 1] + r)) return true;
-      }
+      if (near(x.data(), y.data())) return true;
     }
     return false;
   };

@@ -43,8 +43,10 @@ double EgoReachAfter(const core::HypothesisSet& ego, const core::SimulationConfi
                      double accel, int steps);
 
 /** out[o] = 1 when collision object o of `problem` (o < problem.objects.size()) can meet no
- *  ego hypothesis: neither its own box nor any of its carriages' boxes. */
-std::vector<char> OutOfReach(const Problem& problem);
+ *  ego hypothesis: neither its own box nor any of its carriages' boxes. `simd`: the objects'
+ *  paths of one profile simulated together in SIMD lanes where they apply (cpu/sibling_steps.h,
+ *  EstimatorOptions::simd), else one by one with the scalar step. */
+std::vector<char> OutOfReach(const Problem& problem, bool simd = false);
 
 /** `problem` without the objects marked in `drop` (their trajectories, their carriages',
  *  probabilities and results); kept objects and carriages keep their order. */

@@ -249,6 +249,9 @@ void Derive(DriverOptions* o) {
   scenes.all_vehicles = observe.all_vehicles;
   o->act.closed_loop.brake.latency_s = o->params.latency_s;  // the escape routes' braking
   o->act.closed_loop.brake.jerk_mps3 = o->params.jerk_mps3;
+  // Only the closed loop reads the escape routes (plugin/act/closed_loop.cc); each is
+  // re-simulated step by step with its trace, so the other modes ask for none.
+  if (o->act.act != Act::kBrake) o->params.max_escape_routes = 0;
   // Pipelined, SUMO's step runs beside the estimate: the estimator's helper threads sleep
   // between its parallel loops instead of spinning on SUMO's core, and --threads 0 with named
   // egos (one small estimate per step) leaves SUMO a core. A fleet (--all-vehicles) keeps

@@ -211,6 +211,26 @@ Scene EdgeScene(std::mt19937_64& rng, const Params& params) {
   return s;
 }
 
+// The objects' paths simulated in SIMD lanes (EstimatorOptions::simd, the default) decide as
+// the scalar step does, on scenes whose objects sit around the edge of the ego's reach.
+TEST(ReachFilter, SimdLanesDecideAsTheScalarStep) {
+  std::mt19937_64 rng(20261203);
+  int dropped = 0, kept = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    Params params = SomeParams(rng);
+    params.horizon_s = 2.0;
+    params.step_s = 0.05;
+    Scene scene = EdgeScene(rng, params);
+    if (trial % 3 == 0) scene.euler_update_step_s = Uni(rng, 0.05, 1.0);
+    const internal::Problem pb = BuildProblem(scene, params);
+    const std::vector<char> scalar = internal::OutOfReach(pb, false);
+    EXPECT_EQ(internal::OutOfReach(pb, true), scalar) << "trial " << trial;
+    for (char d : scalar) (d ? dropped : kept)++;
+  }
+  EXPECT_GT(dropped, 20);
+  EXPECT_GT(kept, 20);
+}
+
 TEST(ReachFilter, ShortcutGivesTheFullEstimateAtTheEdgeOfReach) {
   std::mt19937_64 rng(424242);
   int dropped = 0, kept_colliding = 0, kept_clear = 0, answered_without_trajectories = 0;
