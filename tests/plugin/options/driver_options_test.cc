@@ -135,6 +135,15 @@ TEST(DriverOptions, ThreadsBesideSumo) {
     EXPECT_TRUE(o.spin_wait) << serial;
   }
   EXPECT_EQ(opts({"--ego", "e", "--threads", "2"}).threads, 2);
+  // Escape routes only for the closed loop, their only reader.
+  auto routes = [](const char* act) {
+    return Parse({"--connect", "h:1", "--output", "x", "--ego", "e", "--act", act})
+        .options.params.max_escape_routes;
+  };
+  EXPECT_EQ(routes("none"), 0);
+  EXPECT_EQ(routes("warn"), 0);
+  EXPECT_EQ(routes("brake"), Params{}.max_escape_routes);
+  EXPECT_GT(routes("brake"), 0);
 }
 
 TEST(DriverOptions, PresetAblationsAndWarningEstimate) {
