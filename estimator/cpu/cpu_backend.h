@@ -30,7 +30,8 @@
 //    and the subtree is neither simulated nor checked. The pair
 //    matrix is the same (its entries there are 0 either way); EgoTrajectories() then holds NaN
 //    for the paths of skipped subtrees (ReferenceBackend has every pose).
-//  - cos/sin of every pose computed once; threads over independent tree roots.
+//  - cos/sin of every pose computed once; threads over each level's packs of nodes and over the
+//    collision tasks.
 //  - With simd (the default), the nodes of one profile and level, and another vehicle's paths
 //    of one profile, are simulated together in SIMD lanes (cpu/sibling_steps.h), with cos/sin
 //    from vector math: the pair matrix then equals the reference's except for grazing
