@@ -90,14 +90,13 @@ V DriveLimit(D d, const core::HypothesisSet& h, V v) {
 // core::TwoTrackDerivative (TwoTrackForces inlined) per lane.
 template <class D, class V = hn::Vec<D>>
 Derivative<V> TwoTrack(D d, const core::VehicleParams& p, V v, V yr, V cb, V sb, V steer,
-                       V factor) {
+                       V cos_steer, V sin_steer, V factor) {
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
   const double wheelbase = p.lf_m + p.lr_m;
   const double weight = p.mass_kg * core::kGravity;
   const double fz_front = 0.5 * weight * p.lr_m / wheelbase;
   const double fz_rear = 0.5 * weight * p.lf_m / wheelbase;
   const V vx_cog = hn::Mul(v, cb), vy_cog = hn::Mul(v, sb);
-  const V cos_steer = hn::Cos(d, steer), sin_steer = hn::Sin(d, steer);
   V fx = zero, fy = zero, mz = zero;
   for (int wheel = 0; wheel < 4; ++wheel) {
     const bool front = wheel < 2;
@@ -303,6 +302,10 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       const double longitudinal = core::RampedValue(t, h.profile_start, target, h.latency, h.rate);
       Derivative<V> der;
       V kin_factor = zero;  // the demand the kinematic model gets (a slip factor or m/s^2)
+      // cos/sin of the steering angle: the two-track model's, and the kinematic model's below
+      // the seam speed (computed once for both).
+      V cos_steer = zero, sin_steer = zero;
+      bool steer_trig = false;
       if (h.model == core::MotionModelKind::kTwoTrack) {
         const double factor0 =
             h.force_profiles ? longitudinal : core::SlipFactor(&ctx, longitudinal);
@@ -311,7 +314,10 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
           const V cap = hn::Div(DriveLimit(d, h, v), hn::Set(d, mu_g));
           factor = hn::IfThenElse(hn::Lt(cap, factor), cap, factor);
         }
-        der = TwoTrack(d, p, v, yr, cb, sb, steer, factor);
+        cos_steer = hn::Cos(d, steer);
+        sin_steer = hn::Sin(d, steer);
+        steer_trig = true;
+        der = TwoTrack(d, p, v, yr, cb, sb, steer, cos_steer, sin_steer, factor);
         kin_factor = factor;
       } else {
         V lon = hn::Set(d, longitudinal);
@@ -332,7 +338,11 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
                        ? hn::Mul(hn::Set(d, mu_g), kin_factor)
                        : kin_factor;
         const double wheelbase = p.lf_m + p.lr_m;
-        V tan_steer = hn::Div(hn::Sin(d, steer), hn::Cos(d, steer));
+        if (!steer_trig) {
+          cos_steer = hn::Cos(d, steer);
+          sin_steer = hn::Sin(d, steer);
+        }
+        V tan_steer = hn::Div(sin_steer, cos_steer);
         if (p.friction_limited) {
           kv_dot = ClampV(kv_dot, hn::Set(d, -mu_g), hn::Set(d, mu_g));
           const V room = hn::Sub(hn::Set(d, mu_g * mu_g), hn::Mul(kv_dot, kv_dot));
