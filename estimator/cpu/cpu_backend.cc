@@ -126,13 +126,9 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
       const int j0 = pb.co_offset[o] + profile * h.n_paths;
       const bool co_lanes = simd_ && internal::SiblingStepsApply(h, pb.sim);
       if (co_lanes) {
-        internal::SiblingSpan span = internal::SpanOf(h, pb.sim, profile, 0, steps, h.n_paths);
-        for (int path = 0; path < h.n_paths; ++path) {
-          const size_t at = co_.Offset(j0 + path);
-          internal::SetLane(&span, path, path, core::InitialSimulationState(h, pb.sim), &co_.x[at],
-                            &co_.y[at], &co_.yaw[at], &co_cos_[at], &co_sin_[at]);
-        }
-        internal::SimulateSiblingSteps(&span);
+        const size_t at = co_.Offset(j0);
+        internal::SimulateProfilePaths(h, pb.sim, profile, &co_.x[at], &co_.y[at], &co_.yaw[at],
+                                       co_.steps, &co_cos_[at], &co_sin_[at]);
       } else {
         for (int path = 0; path < h.n_paths; ++path) {
           const size_t at = co_.Offset(j0 + path);
@@ -404,89 +400,85 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
     // node's.
     std::vector<int> live[core::kMaxSampleInstants + 1];
     std::vector<char> near(max_span_blocks);
-    {
-      const Task t = tasks[task];
-      const core::HypothesisSet& co = pb.cos[t.object];
-      // Centres farther apart than the sum of the bounding radii cannot overlap; the small
-      // margin keeps exactly touching boxes for the exact test. The object-wide tests add a
-      // margin far above rounding, as their circles enclose the trajectories' circles.
-      const double reach = ego_r + core::BoundingRadius(co.half_length, co.half_width) + 1e-9;
-      const double reach2 = reach * reach;
-      const double object_reach = reach + 1e-6;
-      live[0].clear();
-      for (int j = t.j0; j < t.j1; ++j) live[0].push_back(j);
-      auto walk = [&](auto&& self, int k, int group) -> void {
-        if (k >= core::kMaxSampleInstants) return;  // never: K <= kMaxSampleInstants
-        const size_t nb = static_cast<size_t>(t.profile) * nodes + node_offset_[k] + group;
-        if (node_skipped_[nb]) return;  // out of reach: never simulated
-        // Swept bounds: nothing below this node comes near the object, or a trajectory.
-        const Circle& nc = node_bounds_.c[nb];
-        {
-          const Circle& tc = object_tail_.c[static_cast<size_t>(t.object) * K + k];
-          const double sx = nc.cx - tc.cx, sy = nc.cy - tc.cy;
-          const double sr = nc.r + tc.r + object_reach;
-          if (sx * sx + sy * sy > sr * sr) return;
-        }
-        const int width = Power(L, K - 1 - k);
-        const int first = t.profile * ego.n_paths + group * width;
-        const size_t ei = ego_.Offset(first), eb = static_cast<size_t>(first) * blocks;
-        // The span's blocks where the object (all its trajectories) comes near the node.
-        const int q0 = phase_block_[k], q1 = phase_block_[k + 1];
-        bool any_near = false;
-        for (int q = q0; q < q1; ++q) {
-          const Circle &e = ego_bounds_.c[eb + q],
-                       &o = object_blocks_.c[static_cast<size_t>(t.object) * blocks + q];
-          const double bx = e.cx - o.cx, by = e.cy - o.cy, br = e.r + o.r + object_reach;
-          near[q - q0] = bx * bx + by * by <= br * br;
-          any_near |= near[q - q0] != 0;
-        }
-        std::vector<int>& next = live[k + 1];
-        next.clear();
-        for (const int j : live[k]) {
-          const size_t tb = static_cast<size_t>(j) * K + k;
-          const Circle& tc = co_tail_.c[tb];
-          const double sx = nc.cx - tc.cx, sy = nc.cy - tc.cy;
-          const double sr = nc.r + tc.r + reach;
-          if (sx * sx + sy * sy > sr * sr) continue;
-          // First colliding step (1-based) of the node's path and j within span k.
-          int hit = 0;
-          if (any_near) {
-            const size_t cj = co_.Offset(j), cb = static_cast<size_t>(j) * blocks;
-            for (int q = q0; q < q1 && hit == 0; ++q) {
-              if (!near[q - q0]) continue;
-              const Circle &e = ego_bounds_.c[eb + q], &o = co_bounds_.c[cb + q];
-              const double bx = e.cx - o.cx, by = e.cy - o.cy, br = e.r + o.r + reach;
-              if (bx * bx + by * by > br * br) continue;  // the whole block is apart
-              for (int n = block_begin_[q]; n < block_begin_[q + 1]; ++n) {
-                const double dx = co_.x[cj + n] - ego_.x[ei + n],
-                             dy = co_.y[cj + n] - ego_.y[ei + n];
-                if (dx * dx + dy * dy > reach2) continue;
-                const core::OrientedBox<double> a{ego_.x[ei + n],   ego_.y[ei + n],
-                                                  ego_cos_[ei + n], ego_sin_[ei + n],
-                                                  ego_hl,           ego_hw};
-                const core::OrientedBox<double> b{co_.x[cj + n],   co_.y[cj + n],  co_cos_[cj + n],
-                                                  co_sin_[cj + n], co.half_length, co.half_width};
-                if (core::BoxesOverlap(a, b)) {
-                  hit = n + 1;
-                  break;
-                }
+    const Task t = tasks[task];
+    const core::HypothesisSet& co = pb.cos[t.object];
+    // Centres farther apart than the sum of the bounding radii cannot overlap; the small
+    // margin keeps exactly touching boxes for the exact test. The object-wide tests add a
+    // margin far above rounding, as their circles enclose the trajectories' circles.
+    const double reach = ego_r + core::BoundingRadius(co.half_length, co.half_width) + 1e-9;
+    const double reach2 = reach * reach;
+    const double object_reach = reach + 1e-6;
+    live[0].clear();
+    for (int j = t.j0; j < t.j1; ++j) live[0].push_back(j);
+    auto walk = [&](auto&& self, int k, int group) -> void {
+      if (k >= core::kMaxSampleInstants) return;  // never: K <= kMaxSampleInstants
+      const size_t nb = static_cast<size_t>(t.profile) * nodes + node_offset_[k] + group;
+      if (node_skipped_[nb]) return;  // out of reach: never simulated
+      // Swept bounds: nothing below this node comes near the object, or a trajectory.
+      const Circle& nc = node_bounds_.c[nb];
+      {
+        const Circle& tc = object_tail_.c[static_cast<size_t>(t.object) * K + k];
+        const double sx = nc.cx - tc.cx, sy = nc.cy - tc.cy;
+        const double sr = nc.r + tc.r + object_reach;
+        if (sx * sx + sy * sy > sr * sr) return;
+      }
+      const int width = Power(L, K - 1 - k);
+      const int first = t.profile * ego.n_paths + group * width;
+      const size_t ei = ego_.Offset(first), eb = static_cast<size_t>(first) * blocks;
+      // The span's blocks where the object (all its trajectories) comes near the node.
+      const int q0 = phase_block_[k], q1 = phase_block_[k + 1];
+      bool any_near = false;
+      for (int q = q0; q < q1; ++q) {
+        const Circle &e = ego_bounds_.c[eb + q],
+                     &o = object_blocks_.c[static_cast<size_t>(t.object) * blocks + q];
+        const double bx = e.cx - o.cx, by = e.cy - o.cy, br = e.r + o.r + object_reach;
+        near[q - q0] = bx * bx + by * by <= br * br;
+        any_near |= near[q - q0] != 0;
+      }
+      std::vector<int>& next = live[k + 1];
+      next.clear();
+      for (const int j : live[k]) {
+        const size_t tb = static_cast<size_t>(j) * K + k;
+        const Circle& tc = co_tail_.c[tb];
+        const double sx = nc.cx - tc.cx, sy = nc.cy - tc.cy;
+        const double sr = nc.r + tc.r + reach;
+        if (sx * sx + sy * sy > sr * sr) continue;
+        // First colliding step (1-based) of the node's path and j within span k.
+        int hit = 0;
+        if (any_near) {
+          const size_t cj = co_.Offset(j), cb = static_cast<size_t>(j) * blocks;
+          for (int q = q0; q < q1 && hit == 0; ++q) {
+            if (!near[q - q0]) continue;
+            const Circle &e = ego_bounds_.c[eb + q], &o = co_bounds_.c[cb + q];
+            const double bx = e.cx - o.cx, by = e.cy - o.cy, br = e.r + o.r + reach;
+            if (bx * bx + by * by > br * br) continue;  // the whole block is apart
+            for (int n = block_begin_[q]; n < block_begin_[q + 1]; ++n) {
+              const double dx = co_.x[cj + n] - ego_.x[ei + n], dy = co_.y[cj + n] - ego_.y[ei + n];
+              if (dx * dx + dy * dy > reach2) continue;
+              const core::OrientedBox<double> a{ego_.x[ei + n],   ego_.y[ei + n], ego_cos_[ei + n],
+                                                ego_sin_[ei + n], ego_hl,         ego_hw};
+              const core::OrientedBox<double> b{co_.x[cj + n],   co_.y[cj + n],  co_cos_[cj + n],
+                                                co_sin_[cj + n], co.half_length, co.half_width};
+              if (core::BoxesOverlap(a, b)) {
+                hit = n + 1;
+                break;
               }
             }
           }
-          if (hit > 0) {
-            for (int p = 0; p < width; ++p) {
-              (*first_step)[static_cast<size_t>(first + p) * n_co + j] =
-                  static_cast<std::int16_t>(hit);
-            }
-          } else {
-            next.push_back(j);
-          }
         }
-        if (next.empty() || k + 1 >= K) return;
-        for (int c = 0; c < L; ++c) self(self, k + 1, group * L + c);
-      };
-      for (int g = 0; g < L; ++g) walk(walk, 0, g);
-    }
+        if (hit > 0) {
+          for (int p = 0; p < width; ++p) {
+            (*first_step)[static_cast<size_t>(first + p) * n_co + j] =
+                static_cast<std::int16_t>(hit);
+          }
+        } else {
+          next.push_back(j);
+        }
+      }
+      if (next.empty() || k + 1 >= K) return;
+      for (int c = 0; c < L; ++c) self(self, k + 1, group * L + c);
+    };
+    for (int g = 0; g < L; ++g) walk(walk, 0, g);
   });
 }
 

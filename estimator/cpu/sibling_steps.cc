@@ -505,6 +505,19 @@ bool SiblingStepsApply(const core::HypothesisSet& h, const core::SimulationConfi
 
 void SimulateSiblingSteps(SiblingSpan* span) { HWY_DYNAMIC_DISPATCH(SiblingStepsImpl)(span); }
 
+void SimulateProfilePaths(const core::HypothesisSet& h, const core::SimulationConfig& cfg,
+                          int profile, double* x, double* y, double* yaw, size_t stride, double* c,
+                          double* s) {
+  SiblingSpan span = SpanOf(h, cfg, profile, 0, cfg.n_steps, h.n_paths);
+  const core::SimulationState start = core::InitialSimulationState(h, cfg);
+  for (int path = 0; path < h.n_paths; ++path) {
+    const size_t at = static_cast<size_t>(path) * stride;
+    SetLane(&span, path, path, start, x + at, y + at, yaw + at, c ? c + at : nullptr,
+            s ? s + at : nullptr);
+  }
+  SimulateSiblingSteps(&span);
+}
+
 void CosSin(const double* a, size_t n, double* c, double* s) {
   HWY_DYNAMIC_DISPATCH(CosSinImpl)(a, n, c, s);
 }

@@ -66,6 +66,14 @@ inline void SetLane(SiblingSpan* span, int l, int path, const core::SimulationSt
   span->s[l] = s;
 }
 
+/** Every path of (h, profile) from the set's initial state over cfg.n_steps steps, together
+ *  in SIMD lanes (requires SiblingStepsApply and h.n_paths <= kMaxLateralSamples): path p's
+ *  poses to x, y, yaw + p * stride (and the heading's cos/sin to c, s + p * stride when given).
+ *  Shared by the CPU backend's other road users and the reach shortcut. */
+void SimulateProfilePaths(const core::HypothesisSet& h, const core::SimulationConfig& cfg,
+                          int profile, double* x, double* y, double* yaw, size_t stride,
+                          double* c = nullptr, double* s = nullptr);
+
 /** Whether SimulateSiblingSteps covers this set: a two-track or one-track vehicle off any
  *  track with the lateral controller on; else simulate each path with
  *  core::SimulateVehicleSteps (pedestrians: core::SimulateHypothesis). */

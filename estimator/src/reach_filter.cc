@@ -116,13 +116,7 @@ std::vector<char> OutOfReach(const Problem& pb, bool simd) {
       ly.resize(n);
       lyaw.resize(n);
       for (int profile = 0; profile < h.n_profiles; ++profile) {
-        SiblingSpan span = SpanOf(h, pb.sim, profile, 0, steps, h.n_paths);
-        for (int path = 0; path < h.n_paths; ++path) {
-          const size_t at = static_cast<size_t>(path) * steps;
-          SetLane(&span, path, path, core::InitialSimulationState(h, pb.sim), &lx[at], &ly[at],
-                  &lyaw[at]);
-        }
-        SimulateSiblingSteps(&span);
+        SimulateProfilePaths(h, pb.sim, profile, lx.data(), ly.data(), lyaw.data(), steps);
         for (int path = 0; path < h.n_paths; ++path) {
           const size_t at = static_cast<size_t>(path) * steps;
           if (near(&lx[at], &ly[at])) return true;
