@@ -144,9 +144,10 @@ void ClosedLoop::Release(const Now& n, Engagement* s, std::vector<ActionEvent>* 
                   (c.forced ? "the scenario's speed" : "setSpeed(-1)");
     } else {
       s->phase = Phase::kHandingBack;
-      a.speed_after_mps = n.v() + c.accel_mps2 * dt_;
+      a.speed_after_mps = HandBackSpeed(c, n.v());
       a.detail += " at the type's accel " + Fixed(c.accel_mps2).substr(1) + " m/s^2 up to the " +
-                  Fixed(c.own_speed_mps).substr(1) + " m/s the scenario forces (speed mode " +
+                  Fixed(c.own_speed_mps).substr(1) +
+                  " m/s the scenario forces, no faster than SUMO's car following (speed mode " +
                   std::to_string(c.speed_mode) + " then restored)";
     }
   }
@@ -285,11 +286,20 @@ bool ClosedLoop::AnyNonBrakingRoute(const std::vector<EscapeRoute>& ranked,
   return false;
 }
 
+double ClosedLoop::HandBackSpeed(const VehicleControl& c, double v) const {
+  // The ramp at the type's accel, no faster than SUMO's own car following: the speeds of the
+  // ramp are ours, and a driver who takes the car back resumes behind its leader.
+  const double lowest = std::max(0.0, v - c.emergency_decel_mps2 * dt_);
+  return std::max(lowest, std::min(v + c.accel_mps2 * dt_, c.model_speed_mps));
+}
+
 bool ClosedLoop::HandBack(const std::string& ego, const VehicleControl& c, double v) {
-  const double reach = v + c.accel_mps2 * dt_;
-  if (c.forced && c.own_speed_mps > reach + kJumpMargin) {
-    world_->CommandSpeed(ego, reach);
-    return false;
+  if (c.forced) {
+    const double ours = HandBackSpeed(c, v);
+    if (c.own_speed_mps > ours + kJumpMargin) {
+      world_->CommandSpeed(ego, ours);
+      return false;
+    }
   }
   world_->ReleaseSpeed(ego);
   return true;

@@ -5,7 +5,8 @@
 //
 //   idle --p >= brake threshold--> engaged --policy releases, speed handed back--> idle
 //   engaged --policy releases, but the scenario forces a speed above what the type's accel
-//            reaches in one step--> handing back (ramping up at accel) --ramp done--> idle
+//            reaches in one step, or above SUMO's car following--> handing back (ramping up
+//            at accel, no faster than SUMO's car following) --ramp done--> idle
 //   handing back --p >= brake threshold--> engaged
 //
 // Within an engagement:
@@ -96,9 +97,12 @@ class ClosedLoop {
   void CommandSpeed(const Now& n, const EscapeRoute* route, bool threat_behind, Engagement* s,
                     std::vector<ActionEvent>* actions);
   /** Gives the speed back to SUMO; where SUMO's own choice is a speed the scenario forces
-   *  above what the type's accel reaches in one step (speed mode 0 would jump to it), commands
-   *  that step of the ramp instead and returns false. */
+   *  above the next speed of the hand-back ramp (HandBackSpeed; speed mode 0 would jump to
+   *  it), commands that speed instead and returns false. */
   bool HandBack(const std::string& ego, const VehicleControl& c, double v);
+  /** The hand-back ramp's next speed: one step at the type's accel, capped by SUMO's own car
+   *  following (VehicleControl::model_speed_mps), braking at most at emergencyDecel. */
+  double HandBackSpeed(const VehicleControl& c, double v) const;
   /** Whether the closed loop can execute a route: it keeps its lane, or (steering allowed) it
    *  goes to a lane of the same edge. */
   bool Executable(const EscapeRoute& e, const VehicleControl& c) const;

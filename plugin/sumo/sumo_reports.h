@@ -3,6 +3,7 @@
 // position is its FRONT BUMPER centre, angles are navigation degrees: 0 = north, clockwise),
 // no conversion and no geometry. The stages turn it into the estimator's conventions
 // (plugin/sumo/sumo_conventions.h) and into scenes (plugin/scenes/).
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -91,6 +92,9 @@ struct VehicleControl {
    *  TraCI (getSpeedWithoutTraCI: its car following, a route's stop; one step old). */
   double own_speed_mps{0.0};
   bool forced{false};  ///< own_speed_mps is a speed the scenario forces
+  /** The speed SUMO's model chose without TraCI (getSpeedWithoutTraCI: its car following, a
+   *  route's stop; one step old), whatever the scenario forces; +inf when unknown. */
+  double model_speed_mps{std::numeric_limits<double>::infinity()};
   double accel_mps2{2.6};
   double emergency_decel_mps2{9.0};
   int speed_mode{31};       ///< the user's (as set before or while the closed loop acts)

@@ -153,6 +153,37 @@ TEST(ClosedLoop, ASpeedTheScenarioForcesIsApproachedAtTheTypesAccelWhenHandingBa
   EXPECT_EQ(f.world.commands.back(), "release ego");
 }
 
+TEST(ClosedLoop, TheHandBackRampIsNoFasterThanSumosCarFollowing) {
+  // cut_in: the avoidance left the ego behind a slower truck. Ramping up at accel to the
+  // 30 m/s the scenario forces, with SUMO's checks off, would drive it into the truck; the
+  // ramp's speeds are ours, and SUMO's car following (19.5 m/s behind it) caps them.
+  Fixture f;
+  VehicleControl forced;
+  forced.forced = true;
+  forced.own_speed_mps = 30.0;
+  forced.model_speed_mps = 19.5;
+  forced.accel_mps2 = 2.6;
+  forced.lane = "E_0";
+  forced.lanes = 2;
+  f.world.control["ego"] = forced;
+  for (int k = 0; k <= 10; ++k) f.StepAt(0.1 * k, k < 3 ? 0.95 : 0.1, {Route(k < 3 ? -4.0 : 0.0)});
+  EXPECT_EQ(f.loop.PhaseOf("ego"), Phase::kHandingBack);
+  EXPECT_EQ(f.world.commands.back(), "speed ego 19.50");
+  EXPECT_DOUBLE_EQ(f.actions.back().speed_after_mps, 19.5);
+  // The leader keeps the car-following speed low: the hand-back goes on, no release.
+  for (int k = 11; k <= 20; ++k) f.StepAt(0.1 * k, 0.1, {Route(0.0)});
+  EXPECT_EQ(f.loop.PhaseOf("ego"), Phase::kHandingBack);
+  EXPECT_EQ(f.world.commands.back(), "speed ego 19.50");
+  // Once the way is free, the ramp goes on at accel and the speed is handed back at the end.
+  f.world.control["ego"].model_speed_mps = 40.0;
+  f.StepAt(2.1, 0.1, {Route(0.0)});
+  EXPECT_EQ(f.world.commands.back(), "speed ego 20.26");
+  f.world.control["ego"].own_speed_mps = 20.5;
+  f.StepAt(2.2, 0.1, {Route(0.0)});
+  EXPECT_EQ(f.loop.PhaseOf("ego"), Phase::kIdle);
+  EXPECT_EQ(f.world.commands.back(), "release ego");
+}
+
 TEST(ClosedLoop, ALaneChangeStartsWhenTheRouteCrossesIntoTheTargetLane) {
   Fixture f;
   f.StepAt(0.0, 0.95, {Route(0.0, /*left=*/true)});
