@@ -72,6 +72,17 @@ void SectionToLanes(const core::Parabola& p, size_t l, Lanes* L) {
   L->x_end[l] = p.x_end;
 }
 
+// hn::Atan, the same operations lane for lane, without its division when no lane needs it:
+// hn::Atan always computes 1 / |x| for the lanes with |x| > 1, and the angles here (slip
+// angles, path slopes, sideslip) mostly have none.
+template <class D, class V = hn::Vec<D>>
+V AtanOf(D d, V x) {
+  const V sign = hn::And(hn::SignBit(d), x);
+  const V abs_x = hn::Xor(x, sign);
+  if (!hn::AllFalse(d, hn::Gt(abs_x, hn::Set(d, 1.0)))) return hn::Atan(d, x);
+  return hn::Or(hn::impl::AtanImpl<double>().AtanPoly(d, abs_x), sign);
+}
+
 // What a model returns for one step (core::StateDerivative), per lane.
 template <class V>
 struct Derivative {
@@ -107,15 +118,22 @@ Derivative<V> TwoTrack(D d, const core::VehicleParams& p, V v, V yr, V cb, V sb,
     const V wx = hn::Sub(vx_cog, hn::Mul(yr, hn::Set(d, yw)));
     const V wy = hn::Add(vy_cog, hn::Mul(yr, hn::Set(d, xw)));
     const V delta = front ? steer : zero;
-    const V alpha = hn::Sub(delta, hn::Atan(d, hn::Div(wy, wx)));
+    const V alpha = hn::Sub(delta, AtanOf(d, hn::Div(wy, wx)));
     V fl = hn::Mul(hn::Set(d, p.friction * fz), factor);
     V fs = hn::Mul(hn::Set(d, c_wheel), alpha);
-    const V limit = hn::Set(d, p.friction * fz);
-    const V norm = hn::Sqrt(hn::Add(hn::Mul(fl, fl), hn::Mul(fs, fs)));
-    const auto over = hn::Gt(norm, limit);
-    const V ratio = hn::Div(limit, norm);
-    fl = hn::IfThenElse(over, hn::Mul(fl, ratio), fl);
-    fs = hn::IfThenElse(over, hn::Mul(fs, ratio), fs);
+    // The friction circle: the force scaled onto it where its norm is beyond the limit. Where
+    // the squared norm is clearly below the squared limit in every lane, no lane is beyond,
+    // and the square root and the division are not needed.
+    const double limit_s = p.friction * fz;
+    const V norm2 = hn::Add(hn::Mul(fl, fl), hn::Mul(fs, fs));
+    if (!hn::AllTrue(d, hn::Lt(norm2, hn::Set(d, limit_s * limit_s * (1.0 - 1e-9))))) {
+      const V limit = hn::Set(d, limit_s);
+      const V norm = hn::Sqrt(norm2);
+      const auto over = hn::Gt(norm, limit);
+      const V ratio = hn::Div(limit, norm);
+      fl = hn::IfThenElse(over, hn::Mul(fl, ratio), fl);
+      fs = hn::IfThenElse(over, hn::Mul(fs, ratio), fs);
+    }
     const V cd = front ? cos_steer : one, sd = front ? sin_steer : zero;
     const V fxv = hn::Sub(hn::Mul(cd, fl), hn::Mul(sd, fs));
     const V fyv = hn::Add(hn::Mul(sd, fl), hn::Mul(cd, fs));
@@ -274,7 +292,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       const V q = hn::Add(one, hn::Mul(slope, slope));
       const V root_q = hn::Sqrt(q);
       const V d_path = hn::Div(hn::Sub(eval, yp), root_q);
-      V e_psi = hn::Sub(hn::Add(hn::Atan(d, slope), rot), yaw);
+      V e_psi = hn::Sub(hn::Add(AtanOf(d, slope), rot), yaw);
       if (!hn::AllTrue(d, hn::And(hn::Ge(e_psi, neg_pi), hn::Lt(e_psi, pi)))) {
         double e[kBuf];
         hn::StoreU(e_psi, d, e);
@@ -290,7 +308,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       if (feedforward > 0.0) {
         const auto curved = hn::And(hn::Ge(xp, xs), hn::Le(xp, xe));
         const V kappa = hn::Div(hn::Mul(two, hn::IfThenElseZero(curved, a)), hn::Mul(q, root_q));
-        cmd = hn::Add(cmd, hn::Atan(d, hn::Mul(hn::Set(d, feedforward), kappa)));
+        cmd = hn::Add(cmd, AtanOf(d, hn::Mul(hn::Set(d, feedforward), kappa)));
       }
       cmd = hn::Min(hn::Max(cmd, hn::Set(d, -ctl.max_steer_rad)), hn::Set(d, ctl.max_steer_rad));
       const V prev = hn::LoadU(d, L.steer);
@@ -353,7 +371,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
           tan_steer = hn::IfThenElse(over, hn::CopySign(hn::Div(lw, v2), tan_steer), tan_steer);
         }
         const V kbeta =
-            hn::Atan(d, hn::Div(hn::Mul(hn::Set(d, p.lr_m), tan_steer), hn::Set(d, wheelbase)));
+            AtanOf(d, hn::Div(hn::Mul(hn::Set(d, p.lr_m), tan_steer), hn::Set(d, wheelbase)));
         const V kcb = hn::Cos(d, kbeta), ksb = hn::Sin(d, kbeta);
         const V kyr = hn::Div(hn::Mul(hn::Mul(v, kcb), tan_steer), hn::Set(d, wheelbase));
         v_dot = hn::IfThenElse(kin, kv_dot, v_dot);
