@@ -160,10 +160,11 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   // first k + 1 sections), level by level. Each node starts from its parent's end state (the
   // profile's initial state at the top) and is simulated over its span on its group's first
   // path, with its cos/sin and block bounds (EgoTrajectories() copies the span's poses to the
-  // group's other paths when asked). Nodes of one profile and level, whatever their parents, go
-  // together into SIMD lanes (simd_), up to kMaxLateralSamples per call: 3 lateral samples give 3,
-  // 9, 27 nodes per level, 1, 2, 4 vectors of 8 instead of 1, 3, 9. Below the first level a node
-  // whose reach meets no object is skipped with its subtree.
+  // group's other paths when asked). Nodes of one level, whatever their parents and profiles, go
+  // together into SIMD lanes (simd_), up to kMaxLateralSamples per call, in (profile, node)
+  // order: 3 lateral samples give 3, 9, 27 nodes per profile and level, so that 8 profiles
+  // fill 3, 9, 27 vectors of 8 (8, 16, 32 when packed per profile). Below the first level a
+  // node whose reach meets no object is skipped with its subtree.
   node_offset_[0] = 0;
   for (int k = 0; k < K; ++k) node_offset_[k + 1] = node_offset_[k] + Power(L, k + 1);
   const int nodes = node_offset_[K];
@@ -203,18 +204,22 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   };
   std::vector<Position> parents_end(ego.n_profiles, Position{ego.X_WL.x, ego.X_WL.y});
   std::vector<Position> nodes_end;
-  std::vector<std::pair<int, std::vector<int>>> packs;  // (profile, the nodes it simulates)
+  // The nodes a pack simulates together, (profile, node) each: those of one level, across
+  // profiles, so that the lanes fill up (3 lateral samples give 3 nodes per profile at the
+  // first level: alone they would fill 3 lanes of 8).
+  std::vector<std::vector<std::pair<int, int>>> packs;
+  std::vector<std::pair<int, int>> active;
   for (int k = 0; k < K && k < core::kMaxSampleInstants; ++k) {
     const int count = Power(L, k + 1);      // nodes per profile at this level
     const int width = Power(L, K - 1 - k);  // paths below each node
     const int n0 = boundary_[k], n1 = boundary_[k + 1];
     nodes_state.resize(static_cast<size_t>(ego.n_profiles) * count);
     nodes_end.resize(nodes_state.size());
-    // The nodes to simulate, in packs of kPack per profile (those of skipped parents and those
-    // out of reach left out).
+    // The nodes to simulate, in packs of kPack in (profile, node) order (those of skipped
+    // parents and those out of reach left out).
     packs.clear();
+    active.clear();
     for (int profile = 0; profile < ego.n_profiles; ++profile) {
-      std::vector<int> active;
       for (int parent = 0; parent < count / L; ++parent) {
         // The children of one parent start from its end state: one test for all of them.
         bool skip = false;
@@ -233,34 +238,32 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
             node_skipped_[static_cast<size_t>(profile) * nodes + node_offset_[k] + g] = 1;
             ++skipped_nodes_;
           } else {
-            active.push_back(g);
+            active.emplace_back(profile, g);
           }
         }
       }
-      for (size_t a = 0; a < active.size(); a += kPack) {
-        packs.emplace_back(profile,
-                           std::vector<int>(active.begin() + a,
-                                            active.begin() + std::min(active.size(), a + kPack)));
-      }
+    }
+    for (size_t a = 0; a < active.size(); a += kPack) {
+      packs.emplace_back(active.begin() + a, active.begin() + std::min(active.size(), a + kPack));
     }
     internal::ParallelFor(static_cast<int>(packs.size()), threads_, [&](int begin, int end) {
       for (int task = begin; task < end; ++task) {
-        const int profile = packs[task].first;
-        const std::vector<int>& group = packs[task].second;
+        const std::vector<std::pair<int, int>>& group = packs[task];
         internal::SiblingSpan span =
-            internal::SpanOf(ego, pb.sim, profile, n0, n1, static_cast<int>(group.size()));
+            internal::SpanOf(ego, pb.sim, group[0].first, n0, n1, static_cast<int>(group.size()));
         for (size_t l = 0; l < group.size(); ++l) {
-          const int g = group[l];
+          const auto [profile, g] = group[l];
           const size_t at = ego_.Offset(profile * ego.n_paths + g * width);
           internal::SetLane(&span, static_cast<int>(l), g * width,
                             parents[static_cast<size_t>(profile) * (count / L) + g / L],
                             &ego_.x[at], &ego_.y[at], &ego_.yaw[at], &ego_cos_[at], &ego_sin_[at]);
+          span.profile[l] = profile;
         }
         if (lanes) {
           internal::SimulateSiblingSteps(&span);
         } else {
           for (int c = 0; c < span.lanes; ++c) {
-            core::SimulateVehicleSteps(ego, pb.sim, profile, span.path[c], n0, n1,
+            core::SimulateVehicleSteps(ego, pb.sim, span.profile[c], span.path[c], n0, n1,
                                        &span.state[c], span.x[c], span.y[c], span.yaw[c]);
           }
         }
@@ -268,7 +271,7 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
         // first path only (it walks the same tree): the group's other paths get the poses
         // only when EgoTrajectories() is asked for them.
         for (size_t l = 0; l < group.size(); ++l) {
-          const int g = group[l];
+          const auto [profile, g] = group[l];
           nodes_state[static_cast<size_t>(profile) * count + g] = span.state[l];
           const int first = profile * ego.n_paths + g * width;
           const size_t last = ego_.Offset(first) + n1 - 1;

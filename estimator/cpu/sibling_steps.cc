@@ -76,7 +76,7 @@ void SectionToLanes(const core::Parabola& p, size_t l, Lanes* L) {
 // hn::Atan always computes 1 / |x| for the lanes with |x| > 1, and the angles here (slip
 // angles, path slopes, sideslip) mostly have none.
 template <class D, class V = hn::Vec<D>>
-V AtanOf(D d, V x) {
+HWY_INLINE V AtanOf(D d, V x) {
   const V sign = hn::And(hn::SignBit(d), x);
   const V abs_x = hn::Xor(x, sign);
   if (!hn::AllFalse(d, hn::Gt(abs_x, hn::Set(d, 1.0)))) return hn::Atan(d, x);
@@ -222,11 +222,18 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
   const core::VehicleParams& p = h.vehicle;
   const size_t N = hn::Lanes(d);
   const double tau = cfg.tau;
-  const double target = h.profile_target[span->profile];
+  auto lane_of = [&](size_t l) { return first + static_cast<int>(l < size_t(count) ? l : 0); };
+  // Each lane's profile target; the lanes may come from different profiles of the set (the
+  // ego's tree nodes of one level are packed across profiles).
+  double target[kBuf];
+  for (size_t l = 0; l < N; ++l) target[l] = h.profile_target[span->profile[lane_of(l)]];
+  bool uniform = true;
+  for (size_t l = 1; l < N; ++l) uniform = uniform && target[l] == target[0];
   core::StepContext ctx = core::MakeStepContext(h);
   const double mu_g = ctx.mu_g;
+  core::StepContext lane_ctx[kBuf];  // each lane's slip-factor cache (mixed profiles)
+  for (size_t l = 0; l < N; ++l) lane_ctx[l] = ctx;
 
-  auto lane_of = [&](size_t l) { return first + static_cast<int>(l < size_t(count) ? l : 0); };
   Lanes L;
   for (size_t l = 0; l < N; ++l) ToLanes(span->state[lane_of(l)], l, &L);
   int instant = span->state[first].instant;
@@ -315,9 +322,16 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       const V steer = hn::Min(hn::Max(cmd, hn::Sub(prev, hn::Set(d, rate_step))),
                               hn::Add(prev, hn::Set(d, rate_step)));
 
-      // Longitudinal demand (the same for every lane), the drive's limit (per lane) and the
-      // model's derivative.
-      const double longitudinal = core::RampedValue(t, h.profile_start, target, h.latency, h.rate);
+      // Longitudinal demand (each lane's profile's; one value when the lanes share a profile),
+      // the drive's limit (per lane) and the model's derivative.
+      double demand[kBuf];
+      if (uniform) {
+        demand[0] = core::RampedValue(t, h.profile_start, target[0], h.latency, h.rate);
+      } else {
+        for (size_t l = 0; l < N; ++l)
+          demand[l] = core::RampedValue(t, h.profile_start, target[l], h.latency, h.rate);
+      }
+      const double longitudinal = demand[0];
       Derivative<V> der;
       V kin_factor = zero;  // the demand the kinematic model gets (a slip factor or m/s^2)
       // cos/sin of the steering angle: the two-track model's, and the kinematic model's below
@@ -325,12 +339,25 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       V cos_steer = zero, sin_steer = zero;
       bool steer_trig = false;
       if (h.model == core::MotionModelKind::kTwoTrack) {
-        const double factor0 =
-            h.force_profiles ? longitudinal : core::SlipFactor(&ctx, longitudinal);
-        V factor = hn::Set(d, factor0);
-        if (h.power_limited && factor0 > 0.0) {
-          const V cap = hn::Div(DriveLimit(d, h, v), hn::Set(d, mu_g));
-          factor = hn::IfThenElse(hn::Lt(cap, factor), cap, factor);
+        V factor;
+        if (uniform) {
+          const double factor0 =
+              h.force_profiles ? longitudinal : core::SlipFactor(&ctx, longitudinal);
+          factor = hn::Set(d, factor0);
+          if (h.power_limited && factor0 > 0.0) {
+            const V cap = hn::Div(DriveLimit(d, h, v), hn::Set(d, mu_g));
+            factor = hn::IfThenElse(hn::Lt(cap, factor), cap, factor);
+          }
+        } else {
+          double f[kBuf];
+          for (size_t l = 0; l < N; ++l)
+            f[l] = h.force_profiles ? demand[l] : core::SlipFactor(&lane_ctx[l], demand[l]);
+          factor = hn::LoadU(d, f);
+          if (h.power_limited) {  // where the factor drives (> 0), as in the uniform case
+            const V cap = hn::Div(DriveLimit(d, h, v), hn::Set(d, mu_g));
+            factor =
+                hn::IfThenElse(hn::And(hn::Gt(factor, zero), hn::Lt(cap, factor)), cap, factor);
+          }
         }
         cos_steer = hn::Cos(d, steer);
         sin_steer = hn::Sin(d, steer);
@@ -338,10 +365,10 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
         der = TwoTrack(d, p, v, yr, cb, sb, steer, cos_steer, sin_steer, factor);
         kin_factor = factor;
       } else {
-        V lon = hn::Set(d, longitudinal);
-        if (h.power_limited && longitudinal > 0.0) {
+        V lon = uniform ? hn::Set(d, longitudinal) : hn::LoadU(d, demand);
+        if (h.power_limited && (!uniform || longitudinal > 0.0)) {
           const V cap = DriveLimit(d, h, v);
-          lon = hn::IfThenElse(hn::Lt(cap, lon), cap, lon);
+          lon = hn::IfThenElse(hn::And(hn::Gt(lon, zero), hn::Lt(cap, lon)), cap, lon);
         }
         der = OneTrack(d, p, v, beta, yr, steer, lon);
         kin_factor = lon;

@@ -18,13 +18,15 @@
 
 namespace criticality::internal {
 
-/** Up to kMaxLateralSamples paths of one vehicle hypothesis set and profile, over steps
- *  [n_begin, n_end). Lane l starts from state[l] (left there at the end) and writes the pose
- *  of step n to x[l][n], y[l][n], yaw[l][n]. */
+/** Up to kMaxLateralSamples paths of one vehicle hypothesis set, each lane with its profile,
+ *  over steps [n_begin, n_end). Lane l starts from state[l] (left there at the end) and writes the
+ * pose of step n to x[l][n], y[l][n], yaw[l][n]. */
 struct SiblingSpan {
   const core::HypothesisSet* h{nullptr};
   const core::SimulationConfig* cfg{nullptr};
-  int profile{0};
+  /** Each lane's profile of h (SpanOf sets one for all; the ego's tree nodes of one level
+   *  are packed across profiles). */
+  int profile[core::kMaxLateralSamples]{};
   int n_begin{0}, n_end{0};
   int lanes{0};
   int path[core::kMaxLateralSamples]{};
@@ -46,7 +48,7 @@ inline SiblingSpan SpanOf(const core::HypothesisSet& h, const core::SimulationCo
   SiblingSpan span;
   span.h = &h;
   span.cfg = &cfg;
-  span.profile = profile;
+  for (int& p : span.profile) p = profile;
   span.n_begin = n_begin;
   span.n_end = n_end;
   span.lanes = lanes;
