@@ -35,7 +35,9 @@ struct Aabb {
 
 template <class C>
 void StoreCircle(const Aabb& a, size_t k, std::vector<C>* c) {
-  (*c)[k] = C{0.5 * (a.x0 + a.x1), 0.5 * (a.y0 + a.y1), 0.5 * std::hypot(a.x1 - a.x0, a.y1 - a.y0)};
+  // Half the box's diagonal (no overflow to guard against: sqrt, not hypot).
+  const double dx = a.x1 - a.x0, dy = a.y1 - a.y0;
+  (*c)[k] = C{0.5 * (a.x0 + a.x1), 0.5 * (a.y0 + a.y1), 0.5 * std::sqrt(dx * dx + dy * dy)};
 }
 
 int Power(int base, int exp) {
@@ -76,7 +78,8 @@ void CpuBackend::FinishSpan(const TrajectoryStore& t, std::vector<double>* c,
       y1 = std::max(y1, y[n]);
     }
     const size_t k = static_cast<size_t>(tr) * blocks + q;
-    b->c[k] = Circle{0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * std::hypot(x1 - x0, y1 - y0)};
+    const double dx = x1 - x0, dy = y1 - y0;
+    b->c[k] = Circle{0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * std::sqrt(dx * dx + dy * dy)};
   }
 }
 

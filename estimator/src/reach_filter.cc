@@ -104,7 +104,8 @@ std::vector<char> OutOfReach(const Problem& pb, bool simd) {
     if (std::hypot(h.X_WL.x - x0, h.X_WL.y - y0) <= bound[steps] + r) return true;
     auto near = [&](const double* px, const double* py) {
       for (int n = 0; n < steps; ++n) {  // pose n is after n + 1 steps
-        if (!(std::hypot(px[n] - x0, py[n] - y0) > bound[n + 1] + r)) return true;
+        const double dx = px[n] - x0, dy = py[n] - y0, reach = bound[n + 1] + r;
+        if (!(dx * dx + dy * dy > reach * reach)) return true;  // squared: no libm per pose
       }
       return false;
     };
