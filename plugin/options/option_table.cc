@@ -143,6 +143,10 @@ void OptionTable::Estimator(DriverOptions* o) {
       "ablation (ours): such a waiting pedestrian keeps its speed in its reference hypothesis "
       "instead of stopping where the crossing begins, as SUMO's persons do (simulator "
       "knowledge too: plugin/README.md, \"Pedestrians on the footway\")")(
+      "no-heading-hold", po::bool_switch(&raw.no_heading_hold),
+      "ablation (ours): take every vehicle's heading as SUMO reports it, also where it turns "
+      "faster than the vehicle can between two steps (at a junction's corners; by default "
+      "held up to 0.5 s: plugin/README.md, \"Headings\")")(
       "bodies-on-path", po::bool_switch(&raw.bodies_on_path),
       "experimental (ours, off by default: it did not help the held-out networks as a whole, "
       "bench/RESULTS.md): every vehicle of one box (no carriages) is SUMO's box of it (front to "

@@ -167,7 +167,12 @@ class CoSimulation {
     // SUMO moves vehicles by x += v_new * dt unless told to use the ballistic update: the
     // estimator predicts the positions that update gives (Scene::euler_update_step_s).
     const bool euler = world_->Option("step-method.ballistic") != "true";
-    scenes_ = std::make_unique<SceneStage>(o_.scenes, dt_, euler, world_.get(), world_.get());
+    // Whether SUMO moves a vehicle into the next lane within one step (no sublane model,
+    // lanechange.duration 0): the headings it reports then (ObjectReader::HeadingOf).
+    SceneConfig scenes = o_.scenes;
+    const LaneChanging lc = world_->LaneChangingModel();
+    scenes.instant_lane_changes = !lc.sublane && !(lc.duration_s > 0.0);
+    scenes_ = std::make_unique<SceneStage>(scenes, dt_, euler, world_.get(), world_.get());
     estimate_ = std::make_unique<EstimateStage>(o_.params, o_.estimator);
     // Under --act brake the closed loop needs step k's results before SUMO's step k+1.
     sum_.pipelined = o_.run.pipeline && o_.act.act != Act::kBrake;

@@ -158,8 +158,10 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
                                                                           : body.head_length_m;
   s.width_m = o.width_m;
   if (o.height_m > 0.0) s.height_m = o.height_m;
+  bool held = false;
+  const double heading = HeadingOf(o, sumo_time_s, &held);
   const Pose2 c = one_box || !config_.bent_bodies
-                      ? FrontBumperToCentre(o.x_m, o.y_m, o.angle_deg, s.length_m)
+                      ? FrontBumperToCentre(o.x_m, o.y_m, YawToNavigationDeg(heading), s.length_m)
                       : HeadPose(o, way, s.length_m);
   s.state.x_m = c.x;
   s.state.y_m = c.y;
@@ -169,16 +171,22 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.normal_decel_mps2 = o.decel_mps2;
   // Yaw rate from the heading change since the previous step; 0 when the vehicle was not read
   // at the previous step. With long steps it is replaced below by its lane's. SUMO's angle (the
-  // whole body's), so that a body whose first box changes between one box and a chain's does
-  // not turn by that change.
-  const double angle = NavigationDegToYaw(o.angle_deg);
+  // whole body's; held where it jumped, HeadingOf), so that a body whose first box changes
+  // between one box and a chain's does not turn by that change.
   auto it = last_yaw_.find(o.id);
-  if (it != last_yaw_.end() && sumo_time_s > it->second.first &&
-      sumo_time_s - it->second.first < 1.5 * step_s_) {
+  const bool recent = it != last_yaw_.end() && sumo_time_s > it->second.time_s &&
+                      sumo_time_s - it->second.time_s < 1.5 * step_s_;
+  if (recent) {
     s.state.yaw_rate_radps =
-        WrapAngle(angle - it->second.second) / (sumo_time_s - it->second.first);
+        WrapAngle(heading - it->second.yaw_rad) / (sumo_time_s - it->second.time_s);
   }
-  last_yaw_[o.id] = {sumo_time_s, angle};
+  LastHeading& last = last_yaw_[o.id];
+  last.time_s = sumo_time_s;
+  last.yaw_rad = heading;
+  last.yaw_rate_radps = s.state.yaw_rate_radps;  // made plausible below, where it is read
+  if (!held) last.taken_s = sumo_time_s;
+  last.in_junction = IsInternal(o.lane);
+  conditioned_ += held ? 1 : 0;
   s.lane = o.lane;
   if (s.lane.empty()) return s;
   s.edge = network_->Lane(s.lane).edge;
@@ -208,7 +216,39 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.stop_line = StopLineOf(v, o.id, config_, network_, traffic_);
   s.carriages = PlaceCarriages(body, v, o.width_m, config_, step_s_, network_);
   Plausible(lanes.smooth_lane_yaw_rate_radps, &s);
+  last_yaw_[o.id].yaw_rate_radps = s.state.yaw_rate_radps;
   return s;
+}
+
+double ObjectReader::HeadingOf(const SumoObject& o, double sumo_time_s, bool* held) const {
+  // SUMO moves a vehicle along its lanes and turns it to their direction: at the corners of a
+  // junction's internal lane its heading can jump by tens of degrees for a step or two and
+  // back (35 degrees at 12 m/s for 0.4 s on a netgenerate rand net), a turn no vehicle
+  // drives. The same after a lane change within one step (SUMO's default, lanechange.duration
+  // 0): the front is in the new lane, SUMO's angle points from the back, still in the old one,
+  // to it (32 degrees for 3.2 m over a 5 m car) until the back follows, two steps later.
+  // Predicted from that heading the vehicle leaves its lane across the road. A change beyond
+  // the grip-limited yaw rate (v r <= mu g, as Plausible) is held there: the previous heading,
+  // on at the previous yaw rate. After kMaxHeadingHoldS SUMO's heading is taken whatever it is
+  // (with steps that long, never held). Where SUMO moves lane-changing vehicles over time
+  // (lanechange.duration > 0, the sublane model), a sudden heading change on a normal lane is
+  // the start of a lane change (SUMO turns the vehicle by atan(lateral speed / speed) at once)
+  // and is taken as it is; only the junctions' corners are held.
+  const double angle = NavigationDegToYaw(o.angle_deg);
+  *held = false;
+  if (!config_.heading_hold) return angle;
+  auto it = last_yaw_.find(o.id);
+  if (it == last_yaw_.end()) return angle;
+  const LastHeading& last = it->second;
+  const double dt = sumo_time_s - last.time_s;
+  if (!(dt > 0.0) || dt >= 1.5 * step_s_) return angle;
+  if (sumo_time_s - last.taken_s > kMaxHeadingHoldS + 1e-9) return angle;
+  if (!config_.instant_lane_changes && !last.in_junction && !IsInternal(o.lane)) return angle;
+  const double r_max = config_.friction * 9.80665 / std::fmax(Speed(o.speed_mps), 0.1);
+  const double on = WrapAngle(last.yaw_rad + last.yaw_rate_radps * dt);
+  if (!(std::fabs(WrapAngle(angle - on)) > r_max * dt)) return angle;
+  *held = true;
+  return on;
 }
 
 bool ObjectReader::OffItsLane(const SumoObject& o) {

@@ -7,8 +7,9 @@
 // (road_users.h), the carriages of a long body (carriages.h), whether it is stopped or parked;
 // for a walking person whether it keeps to the footway (footway.h). What each driver is then
 // expected to do is set once the whole step is read (expected_accel.h). A state no vehicle of
-// its kind can be in is made plausible and counted (Plausible); values that are not numbers
-// (NaN) are passed on: scene building leaves out what the estimator cannot use.
+// its kind can be in is made plausible and counted (Plausible: a yaw rate or an acceleration;
+// HeadingOf: SUMO's heading jumping for a few steps at a junction's corners); values that are not
+// numbers (NaN) are passed on: scene building leaves out what the estimator cannot use.
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -54,7 +55,22 @@ class ObjectReader {
   RoadNetwork* network_;
   TrafficView* traffic_;
   CounterLanes counter_lanes_;
-  std::unordered_map<std::string, std::pair<double, double>> last_yaw_;  ///< id -> (time, yaw)
+  /** What the previous read of a vehicle saw: when, the heading used (SUMO's, or the held one,
+   *  HeadingOf), the yaw rate used, and when SUMO's heading was last taken as it was. */
+  struct LastHeading {
+    double time_s{0.0};
+    double yaw_rad{0.0};
+    double yaw_rate_radps{0.0};
+    double taken_s{0.0};
+    bool in_junction{false};  ///< it was on a junction's internal lane
+  };
+  /** The heading a vehicle is read with: SUMO's, except where it changed since the previous
+   *  step faster than the vehicle can turn, after an instantaneous lane change or at a
+   *  junction's corner (SceneConfig::heading_hold): then the previous heading turned on at the
+   *  previous yaw rate, for at most kMaxHeadingHoldS since SUMO's was last taken. */
+  double HeadingOf(const SumoObject& o, double sumo_time_s, bool* held) const;
+
+  std::unordered_map<std::string, LastHeading> last_yaw_;  ///< id -> its previous read
   long long conditioned_{0};
 };
 

@@ -53,7 +53,18 @@ struct SceneConfig {
    *  centre follows). Off: a box of the vehicle's length from its front along SUMO's angle,
    *  predicted centred on its path. */
   bool bodies_on_path{false};
+  /** A vehicle's heading that SUMO turns faster than the vehicle can (beyond v r <= mu g since
+   *  the previous step) is held for up to kMaxHeadingHoldS where SUMO's lane changes are
+   *  instantaneous, and on or just off a junction's internal lane (ObjectReader::HeadingOf);
+   *  --no-heading-hold turns it off. Reads only the heading's history, which sensors see. */
+  bool heading_hold{true};
+  /** SUMO moves a vehicle into the next lane within one step (no sublane model,
+   *  lanechange.duration 0, SUMO's defaults); set by the driver from SUMO's options. */
+  bool instant_lane_changes{true};
 };
+
+/** How long a held heading (SceneConfig::heading_hold) may last since SUMO's was last taken. */
+inline constexpr double kMaxHeadingHoldS = 0.5;
 
 /** How far a vehicle can get within the horizon, at least 10 m: v T + a_max T^2 / 2 (its lane
  *  corridor's length, and how far ahead a stop line counts). */

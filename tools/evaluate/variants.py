@@ -45,6 +45,10 @@ VARIANTS = [
     Variant("bent-bodies",
             "ours with a body bent by a turn as a chain of boxes along its way (--bent-bodies)",
             {"act": "warn", "bent-bodies": "true"}),
+    Variant("no-heading-hold",
+            "ours taking SUMO's heading as it is, also where it turns faster than grip allows "
+            "(--no-heading-hold)",
+            {"act": "warn", "no-heading-hold": "true"}),
     Variant("horizon-3", "ours predicting 3 s ahead (--horizon 3) instead of the paper's 2 s",
             {"act": "warn", "horizon": "3"}),
     Variant("paper-literal", "the first implementation's scoring (ParamsPreset paper-literal)",

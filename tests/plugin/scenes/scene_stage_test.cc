@@ -387,6 +387,51 @@ TEST(SceneStage, AHeadingJumpSumoCouldNotDriveIsReplacedByTheLanesYawRate) {
   EXPECT_EQ(stage.conditioned_states(), 1);
 }
 
+// The heading "other" is read with after its SUMO angle (navigation degrees) was set to
+// `angles` one 0.1 s step after another (12 m/s: grip allows 0.82 rad/s, 4.7 degrees a step).
+std::vector<double> HeadingsRead(const SceneConfig& config, const std::vector<double>& angles) {
+  FakeSumoWorld w(0.1);
+  w.AddEdge("E", 0, 0, 300, 0, 2);
+  w.AddVehicle("ego", 50, 0, 90, 12, "E_0", 50, {"E"});
+  w.AddVehicle("other", 80, 0, 90, 12, "E_0", 80, {"E"});
+  SceneStage stage(config, w.StepLength(), true, &w, &w);
+  stage.Run(Observe(w, {"ego"}));
+  std::vector<double> yaw;
+  for (double a : angles) {
+    w.Step();
+    w.Find("other")->angle_deg = a;
+    const Scene s = stage.Run(Observe(w, {"ego"})).scenes.at(0);
+    const Vehicle* other = VehicleIn(s, "other");
+    yaw.push_back(other ? other->state.yaw_rad * 180.0 / kPi : NAN);
+  }
+  return yaw;
+}
+
+TEST(SceneStage, AHeadingSumoTurnsFasterThanGripIsHeldForAtMostHalfASecond) {
+  // After a lane change within one step SUMO's angle points from the back, still in the old
+  // lane, to the front in the new one: 32 degrees for two steps, then back along the lane.
+  const std::vector<double> glitch = {58, 58, 90, 90};
+  SceneConfig config;  // SUMO's defaults: lanechange.duration 0
+  std::vector<double> yaw = HeadingsRead(config, glitch);
+  for (size_t k = 0; k < yaw.size(); ++k) EXPECT_NEAR(yaw[k], 0.0, 1e-9) << "step " << k;
+  // A heading that stays is taken after 0.5 s (five steps held, the sixth SUMO's).
+  yaw = HeadingsRead(config, {58, 58, 58, 58, 58, 58, 58});
+  for (size_t k = 0; k < 5; ++k) EXPECT_NEAR(yaw[k], 0.0, 1e-9) << "step " << k;
+  EXPECT_NEAR(yaw[5], 32.0, 1e-9);
+  EXPECT_NEAR(yaw[6], 32.0, 1e-9);
+  // A turn within grip is SUMO's at once.
+  yaw = HeadingsRead(config, {87, 84});
+  EXPECT_NEAR(yaw[0], 3.0, 1e-9);
+  EXPECT_NEAR(yaw[1], 6.0, 1e-9);
+  // Where SUMO moves lane-changing vehicles over time, a sudden heading on a normal lane is a
+  // lane change starting: taken as it is. And --no-heading-hold takes every heading.
+  config.instant_lane_changes = false;
+  EXPECT_NEAR(HeadingsRead(config, glitch)[0], 32.0, 1e-9);
+  config.instant_lane_changes = true;
+  config.heading_hold = false;
+  EXPECT_NEAR(HeadingsRead(config, glitch)[0], 32.0, 1e-9);
+}
+
 TEST(SceneStage, AnAccelerationBeyondTheTypesLimitsIsBoundedByThem) {
   FakeSumoWorld w;
   w.AddEdge("E", 0, 0, 300, 0, 1);
