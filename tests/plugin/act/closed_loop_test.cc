@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -132,16 +133,25 @@ TEST(ClosedLoop, TheReleaseWaitsWhileEveryRouteAsSafeAsTheBestBrakes) {
   EXPECT_FALSE(f.loop.Acting("ego"));
 }
 
-TEST(ClosedLoop, ASpeedTheScenarioForcesIsApproachedAtTheTypesAccelWhenHandingBack) {
-  Fixture f;
+// The scenario forces `forced_mps` (SUMO's car following would drive `model_mps`): the loop
+// engages for 0.3 s of p 0.95 and braking, then p stays low with a route that does not brake,
+// and the policy releases at 1.0 s.
+void EngageAndReleaseUnderAForcedSpeed(Fixture* f, double forced_mps,
+                                       double model_mps = std::numeric_limits<double>::infinity()) {
   VehicleControl forced;
   forced.forced = true;
-  forced.own_speed_mps = 30.0;  // far above 20 + 2.6 * 0.1
+  forced.own_speed_mps = forced_mps;
+  forced.model_speed_mps = model_mps;
   forced.accel_mps2 = 2.6;
   forced.lane = "E_0";
   forced.lanes = 2;
-  f.world.control["ego"] = forced;
-  for (int k = 0; k <= 10; ++k) f.StepAt(0.1 * k, k < 3 ? 0.95 : 0.1, {Route(k < 3 ? -4.0 : 0.0)});
+  f->world.control["ego"] = forced;
+  for (int k = 0; k <= 10; ++k) f->StepAt(0.1 * k, k < 3 ? 0.95 : 0.1, {Route(k < 3 ? -4.0 : 0.0)});
+}
+
+TEST(ClosedLoop, ASpeedTheScenarioForcesIsApproachedAtTheTypesAccelWhenHandingBack) {
+  Fixture f;
+  EngageAndReleaseUnderAForcedSpeed(&f, 30.0);  // far above 20 + 2.6 * 0.1
   EXPECT_EQ(f.loop.PhaseOf("ego"), Phase::kHandingBack);
   EXPECT_FALSE(f.loop.Acting("ego"));
   EXPECT_EQ(f.world.commands.back(), "speed ego 20.26");
@@ -158,15 +168,7 @@ TEST(ClosedLoop, TheHandBackRampIsNoFasterThanSumosCarFollowing) {
   // 30 m/s the scenario forces, with SUMO's checks off, would drive it into the truck; the
   // ramp's speeds are ours, and SUMO's car following (19.5 m/s behind it) caps them.
   Fixture f;
-  VehicleControl forced;
-  forced.forced = true;
-  forced.own_speed_mps = 30.0;
-  forced.model_speed_mps = 19.5;
-  forced.accel_mps2 = 2.6;
-  forced.lane = "E_0";
-  forced.lanes = 2;
-  f.world.control["ego"] = forced;
-  for (int k = 0; k <= 10; ++k) f.StepAt(0.1 * k, k < 3 ? 0.95 : 0.1, {Route(k < 3 ? -4.0 : 0.0)});
+  EngageAndReleaseUnderAForcedSpeed(&f, 30.0, 19.5);
   EXPECT_EQ(f.loop.PhaseOf("ego"), Phase::kHandingBack);
   EXPECT_EQ(f.world.commands.back(), "speed ego 19.50");
   EXPECT_DOUBLE_EQ(f.actions.back().speed_after_mps, 19.5);
