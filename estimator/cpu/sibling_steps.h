@@ -1,5 +1,5 @@
 #pragma once
-// Paths in SIMD lanes (issue 23). The ego's section-tree nodes of one profile and level
+// Paths in SIMD lanes (issue 23). The ego's section-tree nodes of one level, across profiles
 // (each from its parent's end state, tracking its own section over the level's span) and
 // another vehicle's paths of one profile (each with its own lateral sample) are simulated
 // together, one path per lane of the widest vector unit the CPU has (Highway's run-time

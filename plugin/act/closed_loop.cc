@@ -287,10 +287,10 @@ bool ClosedLoop::AnyNonBrakingRoute(const std::vector<EscapeRoute>& ranked,
 }
 
 double ClosedLoop::HandBackSpeed(const VehicleControl& c, double v) const {
-  // The ramp at the type's accel, no faster than SUMO's own car following: the speeds of the
-  // ramp are ours, and a driver who takes the car back resumes behind its leader.
+  // The ramp at the type's accel, no faster than SUMO's car following behind its leader: the
+  // speeds of the ramp are ours, and a driver who takes the car back resumes behind it.
   const double lowest = std::max(0.0, v - c.emergency_decel_mps2 * dt_);
-  return std::max(lowest, std::min(v + c.accel_mps2 * dt_, c.model_speed_mps));
+  return std::max(lowest, std::min(v + c.accel_mps2 * dt_, c.follow_speed_mps));
 }
 
 bool ClosedLoop::HandBack(const std::string& ego, const VehicleControl& c, double v) {

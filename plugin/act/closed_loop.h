@@ -100,8 +100,9 @@ class ClosedLoop {
    *  above the next speed of the hand-back ramp (HandBackSpeed; speed mode 0 would jump to
    *  it), commands that speed instead and returns false. */
   bool HandBack(const std::string& ego, const VehicleControl& c, double v);
-  /** The hand-back ramp's next speed: one step at the type's accel, capped by SUMO's own car
-   *  following (VehicleControl::model_speed_mps), braking at most at emergencyDecel. */
+  /** The hand-back ramp's next speed: one step at the type's accel, capped by SUMO's car
+   *  following behind the leader (VehicleControl::follow_speed_mps), braking at most at
+   *  emergencyDecel. */
   double HandBackSpeed(const VehicleControl& c, double v) const;
   /** Whether the closed loop can execute a route: it keeps its lane, or (steering allowed) it
    *  goes to a lane of the same edge. */

@@ -46,6 +46,9 @@ struct Observation {
   /** Vehicles that left the simulation in this step (arrived, or egos that vanished): what is
    *  kept about them may go. */
   std::vector<std::string> left;
+  /** Vehicles whose teleport started or ended in this step (any, ego or not): a heading read
+   *  before it says nothing about the one after it. */
+  std::vector<std::string> teleported;
   /** The egos driving now (not teleported), each with what is around it (Ego::nearby always
    *  filled, also when the whole network was read). */
   SumoSurroundings surroundings;

@@ -147,6 +147,10 @@ void ObserveStage::LifeCycle(const StepReport& report, const std::set<std::strin
     }
   }
   // A teleport may start and end in the same step (SUMO found room at once).
+  obs->teleported.insert(obs->teleported.end(), report.teleport_start.begin(),
+                         report.teleport_start.end());
+  obs->teleported.insert(obs->teleported.end(), report.teleport_end.begin(),
+                         report.teleport_end.end());
   for (const std::string& id : report.teleport_start) {
     State* s = StateOf(id);
     if (s && *s == State::kDriving) {

@@ -183,10 +183,13 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   LastHeading& last = last_yaw_[o.id];
   last.time_s = sumo_time_s;
   last.yaw_rad = heading;
-  last.yaw_rate_radps = s.state.yaw_rate_radps;  // made plausible below, where it is read
+  {  // within grip (Plausible below refines it to the lane's where it reads the lanes)
+    const double r_max = config_.friction * 9.80665 / std::fmax(s.state.speed_mps, 0.1);
+    last.yaw_rate_radps = std::clamp(s.state.yaw_rate_radps, -r_max, r_max);
+  }
   if (!held) last.taken_s = sumo_time_s;
   last.in_junction = IsInternal(o.lane);
-  conditioned_ += held ? 1 : 0;
+  if (held) ++conditioned_;  // Plausible below does not count this read again
   s.lane = o.lane;
   if (s.lane.empty()) return s;
   s.edge = network_->Lane(s.lane).edge;
@@ -215,7 +218,7 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   if (step_s_ > kLongStepS) s.state.yaw_rate_radps = lanes.lane_yaw_rate_radps;
   s.stop_line = StopLineOf(v, o.id, config_, network_, traffic_);
   s.carriages = PlaceCarriages(body, v, o.width_m, config_, step_s_, network_);
-  Plausible(lanes.smooth_lane_yaw_rate_radps, &s);
+  Plausible(lanes.smooth_lane_yaw_rate_radps, held, &s);
   last_yaw_[o.id].yaw_rate_radps = s.state.yaw_rate_radps;
   return s;
 }
@@ -230,7 +233,7 @@ double ObjectReader::HeadingOf(const SumoObject& o, double sumo_time_s, bool* he
   // Predicted from that heading the vehicle leaves its lane across the road. A change beyond
   // the grip-limited yaw rate (v r <= mu g, as Plausible) is held there: the previous heading,
   // on at the previous yaw rate. After kMaxHeadingHoldS SUMO's heading is taken whatever it is
-  // (with steps that long, never held). Where SUMO moves lane-changing vehicles over time
+  // (with steps longer than that, never held). Where SUMO moves lane-changing vehicles over time
   // (lanechange.duration > 0, the sublane model), a sudden heading change on a normal lane is
   // the start of a lane change (SUMO turns the vehicle by atan(lateral speed / speed) at once)
   // and is taken as it is; only the junctions' corners are held.
@@ -245,6 +248,8 @@ double ObjectReader::HeadingOf(const SumoObject& o, double sumo_time_s, bool* he
   if (sumo_time_s - last.taken_s > kMaxHeadingHoldS + 1e-9) return angle;
   if (!config_.instant_lane_changes && !last.in_junction && !IsInternal(o.lane)) return angle;
   const double r_max = config_.friction * 9.80665 / std::fmax(Speed(o.speed_mps), 0.1);
+  // Beyond grip both from the previous heading and from where it was turning to.
+  if (!(std::fabs(WrapAngle(angle - last.yaw_rad)) > r_max * dt)) return angle;
   const double on = WrapAngle(last.yaw_rad + last.yaw_rate_radps * dt);
   if (!(std::fabs(WrapAngle(angle - on)) > r_max * dt)) return angle;
   *held = true;
@@ -257,7 +262,7 @@ bool ObjectReader::OffItsLane(const SumoObject& o) {
   return std::hypot(o.x_m - on.x, o.y_m - on.y) > 0.5 * lane.width_m;
 }
 
-void ObjectReader::Plausible(double lane_yaw_rate, ObjectSnapshot* s) {
+void ObjectReader::Plausible(double lane_yaw_rate, bool counted, ObjectSnapshot* s) {
   ObjectState& st = s->state;
   bool changed = false;
   // The yaw rate a vehicle can turn at: within the friction circle, v r <= mu g. SUMO's heading
@@ -280,7 +285,7 @@ void ObjectReader::Plausible(double lane_yaw_rate, ObjectSnapshot* s) {
     st.accel_mps2 = std::clamp(st.accel_mps2, lo, hi);
     changed = true;
   }
-  conditioned_ += changed ? 1 : 0;
+  conditioned_ += changed && !counted ? 1 : 0;
 }
 
 std::optional<Leader> ObjectReader::LeaderOf(const std::string& id, double speed) {

@@ -31,7 +31,7 @@ class ObjectReader {
                TrafficView* traffic);
   /** The snapshots of `objects` (same order), read at SUMO time `sumo_time_s`. */
   std::vector<ObjectSnapshot> Read(const std::vector<SumoObject>& objects, double sumo_time_s);
-  /** A vehicle left the simulation: its heading is no longer remembered. */
+  /** A vehicle left the simulation or was teleported: its heading is no longer remembered. */
   void Forget(const std::string& id) { last_yaw_.erase(id); }
   /** Object reads whose state was made plausible (a yaw rate or an acceleration no vehicle of
    *  its kind can have), so far. */
@@ -47,8 +47,9 @@ class ObjectReader {
    *  lane's centre line (a parking area beside the road). */
   bool OffItsLane(const SumoObject& o);
   /** Plausible states: a yaw rate within grip (the lane's where SUMO's heading jumped), an
-   *  acceleration within the type's limits; counted. */
-  void Plausible(double lane_yaw_rate, ObjectSnapshot* s);
+   *  acceleration within the type's limits; counted unless `counted` (the read's heading was
+   *  held and counted already). */
+  void Plausible(double lane_yaw_rate, bool counted, ObjectSnapshot* s);
 
   SceneConfig config_;
   double step_s_;

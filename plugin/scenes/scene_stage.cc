@@ -16,6 +16,7 @@ SceneStage::SceneStage(const SceneConfig& config, double step_s, bool euler_upda
 
 SceneBatch SceneStage::Run(const Observation& obs) {
   for (const std::string& id : obs.left) reader_.Forget(id);
+  for (const std::string& id : obs.teleported) reader_.Forget(id);
   SceneBatch batch;
   const SumoSurroundings& s = obs.surroundings;
   batch.objects = reader_.Read(s.objects, obs.sumo_time_s);

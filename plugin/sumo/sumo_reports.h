@@ -92,9 +92,10 @@ struct VehicleControl {
    *  TraCI (getSpeedWithoutTraCI: its car following, a route's stop; one step old). */
   double own_speed_mps{0.0};
   bool forced{false};  ///< own_speed_mps is a speed the scenario forces
-  /** The speed SUMO's model chose without TraCI (getSpeedWithoutTraCI: its car following, a
-   *  route's stop; one step old), whatever the scenario forces; +inf when unknown. */
-  double model_speed_mps{std::numeric_limits<double>::infinity()};
+  /** The speed SUMO's car following gives now behind the vehicle's leader (getFollowSpeed
+   *  with getLeader's gap, within its braking distance at the forced speed plus 50 m),
+   *  whatever the scenario forces; +inf without a leader there. */
+  double follow_speed_mps{std::numeric_limits<double>::infinity()};
   double accel_mps2{2.6};
   double emergency_decel_mps2{9.0};
   int speed_mode{31};       ///< the user's (as set before or while the closed loop acts)

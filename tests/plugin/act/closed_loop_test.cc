@@ -133,15 +133,15 @@ TEST(ClosedLoop, TheReleaseWaitsWhileEveryRouteAsSafeAsTheBestBrakes) {
   EXPECT_FALSE(f.loop.Acting("ego"));
 }
 
-// The scenario forces `forced_mps` (SUMO's car following would drive `model_mps`): the loop
-// engages for 0.3 s of p 0.95 and braking, then p stays low with a route that does not brake,
+// The scenario forces `forced_mps` (SUMO's car following behind its leader gives `follow_mps`): the
+// loop engages for 0.3 s of p 0.95 and braking, then p stays low with a route that does not brake,
 // and the policy releases at 1.0 s.
-void EngageAndReleaseUnderAForcedSpeed(Fixture* f, double forced_mps,
-                                       double model_mps = std::numeric_limits<double>::infinity()) {
+void EngageAndReleaseUnderAForcedSpeed(
+    Fixture* f, double forced_mps, double follow_mps = std::numeric_limits<double>::infinity()) {
   VehicleControl forced;
   forced.forced = true;
   forced.own_speed_mps = forced_mps;
-  forced.model_speed_mps = model_mps;
+  forced.follow_speed_mps = follow_mps;
   forced.accel_mps2 = 2.6;
   forced.lane = "E_0";
   forced.lanes = 2;
@@ -177,7 +177,7 @@ TEST(ClosedLoop, TheHandBackRampIsNoFasterThanSumosCarFollowing) {
   EXPECT_EQ(f.loop.PhaseOf("ego"), Phase::kHandingBack);
   EXPECT_EQ(f.world.commands.back(), "speed ego 19.50");
   // Once the way is free, the ramp goes on at accel and the speed is handed back at the end.
-  f.world.control["ego"].model_speed_mps = 40.0;
+  f.world.control["ego"].follow_speed_mps = 40.0;
   f.StepAt(2.1, 0.1, {Route(0.0)});
   EXPECT_EQ(f.world.commands.back(), "speed ego 20.26");
   f.world.control["ego"].own_speed_mps = 20.5;
