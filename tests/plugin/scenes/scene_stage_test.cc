@@ -432,6 +432,22 @@ TEST(SceneStage, AHeadingSumoTurnsFasterThanGripIsHeldForAtMostHalfASecond) {
   EXPECT_NEAR(HeadingsRead(config, glitch)[0], 32.0, 1e-9);
 }
 
+TEST(SceneStage, ATeleportForgetsTheHeadingThatWouldBeHeld) {
+  FakeSumoWorld w(0.1);
+  w.AddEdge("E", 0, 0, 300, 0, 2);
+  w.AddVehicle("ego", 50, 0, 90, 12, "E_0", 50, {"E"});
+  w.AddVehicle("other", 80, 0, 90, 12, "E_0", 80, {"E"});
+  SceneStage stage = Stage(w);
+  stage.Run(Observe(w, {"ego"}));
+  w.Step();
+  w.Find("other")->angle_deg = 58.0;  // 32 degrees in 0.1 s: held without the teleport
+  Observation obs = Observe(w, {"ego"});
+  obs.teleported = {"other"};
+  const Vehicle* other = VehicleIn(stage.Run(obs).scenes.at(0), "other");
+  ASSERT_NE(other, nullptr);
+  EXPECT_NEAR(other->state.yaw_rad * 180.0 / kPi, 32.0, 1e-9);
+}
+
 TEST(SceneStage, AnAccelerationBeyondTheTypesLimitsIsBoundedByThem) {
   FakeSumoWorld w;
   w.AddEdge("E", 0, 0, 300, 0, 1);
