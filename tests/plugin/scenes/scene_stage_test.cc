@@ -388,8 +388,10 @@ TEST(SceneStage, AHeadingJumpSumoCouldNotDriveIsReplacedByTheLanesYawRate) {
 }
 
 // The heading "other" is read with after its SUMO angle (navigation degrees) was set to
-// `angles` one 0.1 s step after another (12 m/s: grip allows 0.82 rad/s, 4.7 degrees a step).
-std::vector<double> HeadingsRead(const SceneConfig& config, const std::vector<double>& angles) {
+// `angles` one 0.1 s step after another (12 m/s: grip allows 0.82 rad/s, 4.7 degrees a step);
+// at read `teleported_at` SUMO reports that it was teleported.
+std::vector<double> HeadingsRead(const SceneConfig& config, const std::vector<double>& angles,
+                                 int teleported_at = -1) {
   FakeSumoWorld w(0.1);
   w.AddEdge("E", 0, 0, 300, 0, 2);
   w.AddVehicle("ego", 50, 0, 90, 12, "E_0", 50, {"E"});
@@ -397,10 +399,12 @@ std::vector<double> HeadingsRead(const SceneConfig& config, const std::vector<do
   SceneStage stage(config, w.StepLength(), true, &w, &w);
   stage.Run(Observe(w, {"ego"}));
   std::vector<double> yaw;
-  for (double a : angles) {
+  for (size_t k = 0; k < angles.size(); ++k) {
     w.Step();
-    w.Find("other")->angle_deg = a;
-    const Scene s = stage.Run(Observe(w, {"ego"})).scenes.at(0);
+    w.Find("other")->angle_deg = angles[k];
+    Observation obs = Observe(w, {"ego"});
+    if (static_cast<int>(k) == teleported_at) obs.teleported = {"other"};
+    const Scene s = stage.Run(obs).scenes.at(0);
     const Vehicle* other = VehicleIn(s, "other");
     yaw.push_back(other ? other->state.yaw_rad * 180.0 / kPi : NAN);
   }
@@ -433,19 +437,8 @@ TEST(SceneStage, AHeadingSumoTurnsFasterThanGripIsHeldForAtMostHalfASecond) {
 }
 
 TEST(SceneStage, ATeleportForgetsTheHeadingThatWouldBeHeld) {
-  FakeSumoWorld w(0.1);
-  w.AddEdge("E", 0, 0, 300, 0, 2);
-  w.AddVehicle("ego", 50, 0, 90, 12, "E_0", 50, {"E"});
-  w.AddVehicle("other", 80, 0, 90, 12, "E_0", 80, {"E"});
-  SceneStage stage = Stage(w);
-  stage.Run(Observe(w, {"ego"}));
-  w.Step();
-  w.Find("other")->angle_deg = 58.0;  // 32 degrees in 0.1 s: held without the teleport
-  Observation obs = Observe(w, {"ego"});
-  obs.teleported = {"other"};
-  const Vehicle* other = VehicleIn(stage.Run(obs).scenes.at(0), "other");
-  ASSERT_NE(other, nullptr);
-  EXPECT_NEAR(other->state.yaw_rad * 180.0 / kPi, 32.0, 1e-9);
+  // 32 degrees in 0.1 s: held without the teleport (the test above), taken after it.
+  EXPECT_NEAR(HeadingsRead(SceneConfig{}, {58}, /*teleported_at=*/0)[0], 32.0, 1e-9);
 }
 
 TEST(SceneStage, AnAccelerationBeyondTheTypesLimitsIsBoundedByThem) {
