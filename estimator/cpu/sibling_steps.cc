@@ -322,56 +322,37 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       const V steer = hn::Min(hn::Max(cmd, hn::Sub(prev, hn::Set(d, rate_step))),
                               hn::Add(prev, hn::Set(d, rate_step)));
 
-      // Longitudinal demand (each lane's profile's; one value when the lanes share a profile),
-      // the drive's limit (per lane) and the model's derivative.
+      // Longitudinal demand (each lane's profile's; one value when the lanes share a profile):
+      // the slip factor the two-track model gets (unless profiles are forces) or the one-track
+      // model's m/s^2, then the drive's limit (per lane) where it drives, and the derivative.
+      const bool two_track = h.model == core::MotionModelKind::kTwoTrack;
+      const size_t distinct = uniform ? 1 : N;
       double demand[kBuf];
-      if (uniform) {
-        demand[0] = core::RampedValue(t, h.profile_start, target[0], h.latency, h.rate);
-      } else {
-        for (size_t l = 0; l < N; ++l)
-          demand[l] = core::RampedValue(t, h.profile_start, target[l], h.latency, h.rate);
+      bool drives = false;
+      for (size_t l = 0; l < distinct; ++l) {
+        const double a = core::RampedValue(t, h.profile_start, target[l], h.latency, h.rate);
+        demand[l] = two_track && !h.force_profiles ? core::SlipFactor(&lane_ctx[l], a) : a;
+        drives = drives || demand[l] > 0.0;
       }
-      const double longitudinal = demand[0];
+      V lon_demand = uniform ? hn::Set(d, demand[0]) : hn::LoadU(d, demand);
+      if (h.power_limited && drives) {
+        V cap = DriveLimit(d, h, v);
+        if (two_track) cap = hn::Div(cap, hn::Set(d, mu_g));
+        lon_demand = hn::IfThenElse(hn::And(hn::Gt(lon_demand, zero), hn::Lt(cap, lon_demand)), cap,
+                                    lon_demand);
+      }
       Derivative<V> der;
-      V kin_factor = zero;  // the demand the kinematic model gets (a slip factor or m/s^2)
       // cos/sin of the steering angle: the two-track model's, and the kinematic model's below
       // the seam speed (computed once for both).
       V cos_steer = zero, sin_steer = zero;
       bool steer_trig = false;
-      if (h.model == core::MotionModelKind::kTwoTrack) {
-        V factor;
-        if (uniform) {
-          const double factor0 =
-              h.force_profiles ? longitudinal : core::SlipFactor(&ctx, longitudinal);
-          factor = hn::Set(d, factor0);
-          if (h.power_limited && factor0 > 0.0) {
-            const V cap = hn::Div(DriveLimit(d, h, v), hn::Set(d, mu_g));
-            factor = hn::IfThenElse(hn::Lt(cap, factor), cap, factor);
-          }
-        } else {
-          double f[kBuf];
-          for (size_t l = 0; l < N; ++l)
-            f[l] = h.force_profiles ? demand[l] : core::SlipFactor(&lane_ctx[l], demand[l]);
-          factor = hn::LoadU(d, f);
-          if (h.power_limited) {  // where the factor drives (> 0), as in the uniform case
-            const V cap = hn::Div(DriveLimit(d, h, v), hn::Set(d, mu_g));
-            factor =
-                hn::IfThenElse(hn::And(hn::Gt(factor, zero), hn::Lt(cap, factor)), cap, factor);
-          }
-        }
+      if (two_track) {
         cos_steer = hn::Cos(d, steer);
         sin_steer = hn::Sin(d, steer);
         steer_trig = true;
-        der = TwoTrack(d, p, v, yr, cb, sb, steer, cos_steer, sin_steer, factor);
-        kin_factor = factor;
+        der = TwoTrack(d, p, v, yr, cb, sb, steer, cos_steer, sin_steer, lon_demand);
       } else {
-        V lon = uniform ? hn::Set(d, longitudinal) : hn::LoadU(d, demand);
-        if (h.power_limited && (!uniform || longitudinal > 0.0)) {
-          const V cap = DriveLimit(d, h, v);
-          lon = hn::IfThenElse(hn::And(hn::Gt(lon, zero), hn::Lt(cap, lon)), cap, lon);
-        }
-        der = OneTrack(d, p, v, beta, yr, steer, lon);
-        kin_factor = lon;
+        der = OneTrack(d, p, v, beta, yr, steer, lon_demand);
       }
       V v_dot = der.v_dot, beta_dot = der.beta_dot, yaw_acc = der.yaw_acc;
       // Below the seam speed: core::KinematicSingleTrack, which sets the sideslip and the yaw
@@ -380,8 +361,8 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       const auto kin = hn::Lt(v, hn::Set(d, h.seam_speed));
       if (!hn::AllFalse(d, kin)) {
         V kv_dot = h.model == core::MotionModelKind::kTwoTrack
-                       ? hn::Mul(hn::Set(d, mu_g), kin_factor)
-                       : kin_factor;
+                       ? hn::Mul(hn::Set(d, mu_g), lon_demand)
+                       : lon_demand;
         const double wheelbase = p.lf_m + p.lr_m;
         if (!steer_trig) {
           cos_steer = hn::Cos(d, steer);

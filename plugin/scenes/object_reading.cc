@@ -160,9 +160,11 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   if (o.height_m > 0.0) s.height_m = o.height_m;
   bool held = false;
   const double heading = HeadingOf(o, sumo_time_s, &held);
-  const Pose2 c = one_box || !config_.bent_bodies
-                      ? FrontBumperToCentre(o.x_m, o.y_m, YawToNavigationDeg(heading), s.length_m)
-                      : HeadPose(o, way, s.length_m);
+  const Pose2 c =
+      one_box || !config_.bent_bodies
+          ? FrontBumperToCentre(o.x_m, o.y_m, held ? YawToNavigationDeg(heading) : o.angle_deg,
+                                s.length_m)
+          : HeadPose(o, way, s.length_m);
   s.state.x_m = c.x;
   s.state.y_m = c.y;
   s.state.yaw_rad = c.yaw;
@@ -183,10 +185,9 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   LastHeading& last = last_yaw_[o.id];
   last.time_s = sumo_time_s;
   last.yaw_rad = heading;
-  {  // within grip (Plausible below refines it to the lane's where it reads the lanes)
-    const double r_max = config_.friction * 9.80665 / std::fmax(s.state.speed_mps, 0.1);
-    last.yaw_rate_radps = std::clamp(s.state.yaw_rate_radps, -r_max, r_max);
-  }
+  // Within grip (Plausible below refines it to the lane's where it reads the lanes).
+  const double r_max = GripYawRate(s.state.speed_mps);
+  last.yaw_rate_radps = std::clamp(s.state.yaw_rate_radps, -r_max, r_max);
   if (!held) last.taken_s = sumo_time_s;
   last.in_junction = IsInternal(o.lane);
   if (held) ++conditioned_;  // Plausible below does not count this read again
@@ -219,7 +220,7 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.stop_line = StopLineOf(v, o.id, config_, network_, traffic_);
   s.carriages = PlaceCarriages(body, v, o.width_m, config_, step_s_, network_);
   Plausible(lanes.smooth_lane_yaw_rate_radps, held, &s);
-  last_yaw_[o.id].yaw_rate_radps = s.state.yaw_rate_radps;
+  last.yaw_rate_radps = s.state.yaw_rate_radps;
   return s;
 }
 
@@ -247,13 +248,17 @@ double ObjectReader::HeadingOf(const SumoObject& o, double sumo_time_s, bool* he
   if (!(dt > 0.0) || dt >= 1.5 * step_s_) return angle;
   if (sumo_time_s - last.taken_s > kMaxHeadingHoldS + 1e-9) return angle;
   if (!config_.instant_lane_changes && !last.in_junction && !IsInternal(o.lane)) return angle;
-  const double r_max = config_.friction * 9.80665 / std::fmax(Speed(o.speed_mps), 0.1);
+  const double r_max = GripYawRate(Speed(o.speed_mps));
   // Beyond grip both from the previous heading and from where it was turning to.
   if (!(std::fabs(WrapAngle(angle - last.yaw_rad)) > r_max * dt)) return angle;
   const double on = WrapAngle(last.yaw_rad + last.yaw_rate_radps * dt);
   if (!(std::fabs(WrapAngle(angle - on)) > r_max * dt)) return angle;
   *held = true;
   return on;
+}
+
+double ObjectReader::GripYawRate(double speed_mps) const {
+  return config_.friction * 9.80665 / std::fmax(speed_mps, 0.1);
 }
 
 bool ObjectReader::OffItsLane(const SumoObject& o) {
@@ -270,8 +275,7 @@ void ObjectReader::Plausible(double lane_yaw_rate, bool counted, ObjectSnapshot*
   // 5.8 m/s: 4.8 rad/s, 27 m/s^2 of lateral acceleration); the vehicle follows its lane there,
   // so the lane's yaw rate (over the corners around it) replaces a yaw rate beyond grip. A
   // tight turn a vehicle really drives (SUMO's right turns: 1.3 rad/s at 4.3 m/s) stays.
-  const double v = st.speed_mps;
-  const double r_max = config_.friction * 9.80665 / std::fmax(v, 0.1);
+  const double r_max = GripYawRate(st.speed_mps);
   if (std::fabs(st.yaw_rate_radps) > r_max) {
     const double lane = s->lanes.own ? lane_yaw_rate : 0.0;
     st.yaw_rate_radps = std::clamp(lane, -r_max, r_max);

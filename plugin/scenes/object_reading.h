@@ -46,6 +46,8 @@ class ObjectReader {
   /** A parked vehicle beside its lane: its position is more than half a lane width off the
    *  lane's centre line (a parking area beside the road). */
   bool OffItsLane(const SumoObject& o);
+  /** The largest yaw rate a vehicle at this speed can turn at within grip: v r <= mu g. */
+  double GripYawRate(double speed_mps) const;
   /** Plausible states: a yaw rate within grip (the lane's where SUMO's heading jumped), an
    *  acceleration within the type's limits; counted unless `counted` (the read's heading was
    *  held and counted already). */
