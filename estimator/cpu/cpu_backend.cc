@@ -55,7 +55,7 @@ CpuBackend::CpuBackend(int threads, bool simd, bool skip_out_of_reach)
 
 void CpuBackend::FinishSpan(const TrajectoryStore& t, std::vector<double>* c,
                             std::vector<double>* s, BlockBounds* b, int tr, int n0, int n1, int q0,
-                            int q1, bool trig_done) const {
+                            int q1, bool trig_done, Box* span_box) const {
   const size_t base = t.Offset(tr);
   if (trig_done) {  // the simulation wrote cos/sin already (SiblingSpan::c, s)
   } else if (simd_) {
@@ -80,6 +80,12 @@ void CpuBackend::FinishSpan(const TrajectoryStore& t, std::vector<double>* c,
     const size_t k = static_cast<size_t>(tr) * blocks + q;
     const double dx = x1 - x0, dy = y1 - y0;
     b->c[k] = Circle{0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * std::sqrt(dx * dx + dy * dy)};
+    if (span_box) {
+      span_box->x0 = std::min(span_box->x0, x0);
+      span_box->x1 = std::max(span_box->x1, x1);
+      span_box->y0 = std::min(span_box->y0, y0);
+      span_box->y1 = std::max(span_box->y1, y1);
+    }
   }
 }
 
@@ -172,6 +178,7 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   for (int k = 0; k < K; ++k) node_offset_[k + 1] = node_offset_[k] + Power(L, k + 1);
   const int nodes = node_offset_[K];
   node_skipped_.assign(static_cast<size_t>(ego.n_profiles) * nodes, 0);
+  node_span_box_.assign(node_skipped_.size(), Box{});
   skipped_nodes_ = checked_nodes_ = 0;
   const double ego_r = core::BoundingRadius(ego.half_length, ego.half_width);
   std::vector<double> object_r(n_sets);
@@ -282,7 +289,8 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
               n1 > n0 ? Position{ego_.x[last], ego_.y[last]}
                       : parents_end[static_cast<size_t>(profile) * (count / L) + g / L];
           FinishSpan(ego_, &ego_cos_, &ego_sin_, &ego_bounds_, first, n0, n1, phase_block_[k],
-                     phase_block_[k + 1], lanes);
+                     phase_block_[k + 1], lanes,
+                     &node_span_box_[static_cast<size_t>(profile) * nodes + node_offset_[k] + g]);
         }
       }
     });
@@ -297,15 +305,14 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   auto sweep = [&](auto&& self, int profile, int k, int group) -> Aabb {
     Aabb box;
     if (k >= core::kMaxSampleInstants) return box;  // never: K <= kMaxSampleInstants
-    if (node_skipped_[static_cast<size_t>(profile) * nodes + node_offset_[k] + group]) return box;
-    const int width = Power(L, K - 1 - k);
-    const size_t at = ego_.Offset(profile * ego.n_paths + group * width);
-    for (int n = boundary_[k]; n < boundary_[k + 1]; ++n) box.Add(ego_.x[at + n], ego_.y[at + n]);
+    const size_t nb = static_cast<size_t>(profile) * nodes + node_offset_[k] + group;
+    if (node_skipped_[nb]) return box;
+    const Box& span = node_span_box_[nb];  // the span's poses (FinishSpan's block boxes)
+    box.Add(Aabb{span.x0, span.x1, span.y0, span.y1});
     if (k + 1 < K) {
       for (int c = 0; c < L; ++c) box.Add(self(self, profile, k + 1, group * L + c));
     }
-    StoreCircle(box, static_cast<size_t>(profile) * nodes + node_offset_[k] + group,
-                &node_bounds_.c);
+    StoreCircle(box, nb, &node_bounds_.c);
     return box;
   };
   internal::ParallelFor(ego.n_profiles * L, threads_, [&](int begin, int end) {

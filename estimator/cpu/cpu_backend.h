@@ -72,13 +72,17 @@ class CpuBackend final : public EstimatorBackend {
   struct BlockBounds {
     std::vector<Circle> c;  ///< [trajectory * blocks + block]: centre and radius together
   };
+  // An axis-aligned box of centres (empty: x0 > x1).
+  struct Box {
+    double x0{1e300}, x1{-1e300}, y0{1e300}, y1{-1e300};
+  };
   /** Sizes b for t's trajectories (FinishSpan fills it). */
   void ResizeBounds(const internal::TrajectoryStore& t, BlockBounds* b) const;
   // cos/sin of steps [n0, n1) (unless trig_done: the simulation wrote them) and bounds of
-  // blocks [q0, q1) of one trajectory.
+  // blocks [q0, q1) of one trajectory; span_box (unless null): the box around their poses.
   void FinishSpan(const internal::TrajectoryStore& t, std::vector<double>* c,
                   std::vector<double>* s, BlockBounds* b, int trajectory, int n0, int n1, int q0,
-                  int q1, bool trig_done = false) const;
+                  int q1, bool trig_done = false, Box* span_box = nullptr) const;
 
   int threads_;
   bool simd_;
@@ -107,6 +111,8 @@ class CpuBackend final : public EstimatorBackend {
   // follow those of instant k-1, k's group g at node_offset_[k] + g); co_tail_ per (CO
   // trajectory, instant k) over steps [boundary_[k], n_steps).
   BlockBounds node_bounds_, co_tail_;
+  // Per (profile, tree node): the box around its span's poses (FinishSpan's, for the sweep).
+  std::vector<Box> node_span_box_;
   // object_tail_ per (collision object set, instant k): around its trajectories' co_tail_.
   BlockBounds object_tail_;
   int node_offset_[core::kMaxSampleInstants + 1]{};

@@ -83,6 +83,38 @@ HWY_INLINE V AtanOf(D d, V x) {
   return hn::Or(hn::impl::AtanImpl<double>().AtanPoly(d, abs_x), sign);
 }
 
+// Sine and cosine of x together. Where every lane has |x| <= kSmallAngle (sideslip, steering
+// and the yaw turned in one step mostly are), their Taylor series to x^13 / x^14, whose first
+// dropped terms (|x|^15 / 15!, |x|^16 / 16!) stay below 1e-20, sharing x^2 and needing no range
+// reduction; elsewhere Highway's Sin and Cos.
+constexpr double kSmallAngle = 0.35;
+
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void SinCos(D d, V x, V* s, V* c) {
+  if (!hn::AllTrue(d, hn::Le(hn::Abs(x), hn::Set(d, kSmallAngle)))) {
+    *s = hn::Sin(d, x);
+    *c = hn::Cos(d, x);
+    return;
+  }
+  const V x2 = hn::Mul(x, x);
+  // sin x = x (1 - x^2/3! (1 - x^2/(4 5) (1 - ...))), the same nesting for cos x.
+  V ps = hn::Set(d, -1.0 / 6227020800.0);  // -1/13!
+  ps = hn::MulAdd(ps, x2, hn::Set(d, 1.0 / 39916800.0));
+  ps = hn::MulAdd(ps, x2, hn::Set(d, -1.0 / 362880.0));
+  ps = hn::MulAdd(ps, x2, hn::Set(d, 1.0 / 5040.0));
+  ps = hn::MulAdd(ps, x2, hn::Set(d, -1.0 / 120.0));
+  ps = hn::MulAdd(ps, x2, hn::Set(d, 1.0 / 6.0));
+  *s = hn::NegMulAdd(hn::Mul(ps, x2), x, x);  // x - x^3 (1/3! - ...)
+  V pc = hn::Set(d, 1.0 / 87178291200.0);     // 1/14!
+  pc = hn::MulAdd(pc, x2, hn::Set(d, -1.0 / 479001600.0));
+  pc = hn::MulAdd(pc, x2, hn::Set(d, 1.0 / 3628800.0));
+  pc = hn::MulAdd(pc, x2, hn::Set(d, -1.0 / 40320.0));
+  pc = hn::MulAdd(pc, x2, hn::Set(d, 1.0 / 720.0));
+  pc = hn::MulAdd(pc, x2, hn::Set(d, -1.0 / 24.0));
+  pc = hn::MulAdd(pc, x2, hn::Set(d, 0.5));
+  *c = hn::NegMulAdd(pc, x2, hn::Set(d, 1.0));  // 1 - x^2 (1/2! - ...)
+}
+
 // What a model returns for one step (core::StateDerivative), per lane.
 template <class V>
 struct Derivative {
@@ -270,7 +302,8 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       const V x = hn::LoadU(d, L.x), y = hn::LoadU(d, L.y), yaw = hn::LoadU(d, L.yaw);
       const V beta = hn::LoadU(d, L.beta), yr = hn::LoadU(d, L.yaw_rate);
       const V ax = hn::LoadU(d, L.ax), ay = hn::LoadU(d, L.ay);
-      const V cb = hn::Cos(d, beta), sb = hn::Sin(d, beta);
+      V cb, sb;
+      SinCos(d, beta, &sb, &cb);
       const V cy = hn::LoadU(d, L.cyaw), sy = hn::LoadU(d, L.syaw);
       const V course_x = hn::Sub(hn::Mul(cy, cb), hn::Mul(sy, sb));
       const V course_y = hn::Add(hn::Mul(sy, cb), hn::Mul(cy, sb));
@@ -347,8 +380,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       V cos_steer = zero, sin_steer = zero;
       bool steer_trig = false;
       if (two_track) {
-        cos_steer = hn::Cos(d, steer);
-        sin_steer = hn::Sin(d, steer);
+        SinCos(d, steer, &sin_steer, &cos_steer);
         steer_trig = true;
         der = TwoTrack(d, p, v, yr, cb, sb, steer, cos_steer, sin_steer, lon_demand);
       } else {
@@ -364,10 +396,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
                        ? hn::Mul(hn::Set(d, mu_g), lon_demand)
                        : lon_demand;
         const double wheelbase = p.lf_m + p.lr_m;
-        if (!steer_trig) {
-          cos_steer = hn::Cos(d, steer);
-          sin_steer = hn::Sin(d, steer);
-        }
+        if (!steer_trig) SinCos(d, steer, &sin_steer, &cos_steer);
         V tan_steer = hn::Div(sin_steer, cos_steer);
         if (p.friction_limited) {
           kv_dot = ClampV(kv_dot, hn::Set(d, -mu_g), hn::Set(d, mu_g));
@@ -380,7 +409,8 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
         }
         const V kbeta =
             AtanOf(d, hn::Div(hn::Mul(hn::Set(d, p.lr_m), tan_steer), hn::Set(d, wheelbase)));
-        const V kcb = hn::Cos(d, kbeta), ksb = hn::Sin(d, kbeta);
+        V kcb, ksb;
+        SinCos(d, kbeta, &ksb, &kcb);
         const V kyr = hn::Div(hn::Mul(hn::Mul(v, kcb), tan_steer), hn::Set(d, wheelbase));
         v_dot = hn::IfThenElse(kin, kv_dot, v_dot);
         beta_dot = hn::IfThenElseZero(hn::Not(kin), beta_dot);
@@ -453,7 +483,11 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       wy = hn::IfThenElseZero(hn::Not(gone), wy);
       const V wyaw = hn::Add(hn::Set(d, h.X_WL.yaw), nyaw);
       // cos/sin of the new yaw: the next step's, and (turned by the frame's) the pose's.
-      const V ncy = hn::Cos(d, nyaw), nsy = hn::Sin(d, nyaw);
+      // The yaw turns by a small angle per step: the new cos/sin by angle addition.
+      V cturn, sturn;
+      SinCos(d, hn::Sub(nyaw, yaw), &sturn, &cturn);
+      const V ncy = hn::Sub(hn::Mul(cy, cturn), hn::Mul(sy, sturn));
+      const V nsy = hn::Add(hn::Mul(sy, cturn), hn::Mul(cy, sturn));
       hn::StoreU(ncy, d, L.cyaw);
       hn::StoreU(nsy, d, L.syaw);
       if (heading_trig) {
@@ -494,19 +528,20 @@ void CosSinImpl(const double* a, size_t n, double* c, double* s) {
   const hn::ScalableTag<double> d;
   const size_t N = hn::Lanes(d);
   size_t i = 0;
+  hn::Vec<decltype(d)> vc, vs;
   for (; i + N <= n; i += N) {
-    const auto v = hn::LoadU(d, a + i);
-    hn::StoreU(hn::Cos(d, v), d, c + i);
-    hn::StoreU(hn::Sin(d, v), d, s + i);
+    SinCos(d, hn::LoadU(d, a + i), &vs, &vc);
+    hn::StoreU(vc, d, c + i);
+    hn::StoreU(vs, d, s + i);
   }
   if (i < n) {  // the tail through the same vector code
-    double va[kBuf] = {}, vc[kBuf], vs[kBuf];
+    double va[kBuf] = {}, bc[kBuf], bs[kBuf];
     std::memcpy(va, a + i, (n - i) * sizeof(double));
-    const auto v = hn::LoadU(d, va);
-    hn::StoreU(hn::Cos(d, v), d, vc);
-    hn::StoreU(hn::Sin(d, v), d, vs);
-    std::memcpy(c + i, vc, (n - i) * sizeof(double));
-    std::memcpy(s + i, vs, (n - i) * sizeof(double));
+    SinCos(d, hn::LoadU(d, va), &vs, &vc);
+    hn::StoreU(vc, d, bc);
+    hn::StoreU(vs, d, bs);
+    std::memcpy(c + i, bc, (n - i) * sizeof(double));
+    std::memcpy(s + i, bs, (n - i) * sizeof(double));
   }
 }
 
