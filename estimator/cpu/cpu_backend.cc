@@ -7,6 +7,7 @@
 
 #include "core/oriented_box.h"
 #include "core/trajectory_generation.h"
+#include "cpu/block_contact.h"
 #include "cpu/sibling_steps.h"
 #include "src/parallel_for.h"
 #include "src/reach_filter.h"
@@ -405,6 +406,9 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
     for (int k = 0; k < K; ++k) m = std::max(m, phase_block_[k + 1] - phase_block_[k]);
     return m;
   }();
+  // The box tests of a block in SIMD lanes (simd_).
+  static_assert(kBlockSteps <= internal::kMaxBlockContactSteps, "a block must fit the lanes");
+  const internal::FirstOverlapFn first_overlap = simd_ ? internal::FirstOverlapInBlock() : nullptr;
   // Tasks differ in cost by orders of magnitude (an object near the ego or far from it): each
   // thread takes the next one when it is free. Each task writes only its own entries.
   internal::ParallelForDynamic(static_cast<int>(tasks.size()), threads_, [&](int task) {
@@ -465,6 +469,17 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
             const Circle &e = ego_bounds_.c[eb + q], &o = co_bounds_.c[cb + q];
             const double bx = e.cx - o.cx, by = e.cy - o.cy, br = e.r + o.r + reach;
             if (bx * bx + by * by > br * br) continue;  // the whole block is apart
+            if (first_overlap) {  // the block's steps in SIMD lanes, the same test
+              const internal::BoxTrack a{&ego_.x[ei],   &ego_.y[ei], &ego_cos_[ei],
+                                         &ego_sin_[ei], ego_hl,      ego_hw};
+              const internal::BoxTrack b{&co_.x[cj],   &co_.y[cj],     &co_cos_[cj],
+                                         &co_sin_[cj], co.half_length, co.half_width};
+              const long readable =
+                  static_cast<long>(std::min(ego_.x.size() - ei, co_.x.size() - cj));
+              const int n = first_overlap(a, b, block_begin_[q], block_begin_[q + 1], readable);
+              if (n >= 0) hit = n + 1;
+              continue;
+            }
             for (int n = block_begin_[q]; n < block_begin_[q + 1]; ++n) {
               const double dx = co_.x[cj + n] - ego_.x[ei + n], dy = co_.y[cj + n] - ego_.y[ei + n];
               if (dx * dx + dy * dy > reach2) continue;
