@@ -16,10 +16,12 @@ struct BoxTrack {
 };
 
 /** The first step n in [n0, n1) (n1 - n0 <= kMaxBlockContactSteps) at which a's and b's boxes
- *  overlap (core::BoxesOverlap), or -1. `readable`: how many values from x[0] (y[0], c[0],
- *  s[0]) of both tracks may be read (at least n1); steps past n1 are read where readable and
- *  ignored. */
-using FirstOverlapFn = int (*)(const BoxTrack& a, const BoxTrack& b, int n0, int n1, long readable);
+ *  overlap (core::BoxesOverlap), or -1. reach2: a squared distance between centres beyond
+ *  which the boxes cannot overlap (the sum of their bounding radii, squared, or more): steps
+ *  beyond it skip the box test. `readable`: how many values from x[0] (y[0], c[0], s[0]) of
+ *  both tracks may be read (at least n1); steps past n1 are read where readable and ignored. */
+using FirstOverlapFn = int (*)(const BoxTrack& a, const BoxTrack& b, int n0, int n1, double reach2,
+                               long readable);
 
 /** The best vector target's FirstOverlap, found once (call it through the pointer: the
  *  blocks are many and short). */

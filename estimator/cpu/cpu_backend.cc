@@ -476,7 +476,8 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
                                          &co_sin_[cj], co.half_length, co.half_width};
               const long readable =
                   static_cast<long>(std::min(ego_.x.size() - ei, co_.x.size() - cj));
-              const int n = first_overlap(a, b, block_begin_[q], block_begin_[q + 1], readable);
+              const int n =
+                  first_overlap(a, b, block_begin_[q], block_begin_[q + 1], reach2, readable);
               if (n >= 0) hit = n + 1;
               continue;
             }

@@ -33,6 +33,12 @@ Track RandomTrack(std::mt19937* rng, int n, double hl, double hw) {
   return t;
 }
 
+// The squared sum of the bounding radii (as RecognizeCollisions gives it).
+double Reach2(const Track& a, const Track& b) {
+  const double r = core::BoundingRadius(a.hl, a.hw) + core::BoundingRadius(b.hl, b.hw) + 1e-9;
+  return r * r;
+}
+
 // The first step the scalar test finds in [n0, n1), or -1.
 int ScalarFirst(const Track& a, const Track& b, int n0, int n1) {
   for (int n = n0; n < n1; ++n)
@@ -53,7 +59,7 @@ TEST(BlockContact, FindsTheSameFirstStepAsTheScalarTest) {
         // last trajectory: nothing may be read past it).
         for (long readable : {long{steps}, long{n0 + len}}) {
           const int want = ScalarFirst(a, b, n0, n0 + len);
-          EXPECT_EQ(first(a.View(), b.View(), n0, n0 + len, readable), want)
+          EXPECT_EQ(first(a.View(), b.View(), n0, n0 + len, Reach2(a, b), readable), want)
               << trial << " " << n0 << " " << len;
           (want >= 0 ? hits : misses)++;
         }
@@ -72,10 +78,10 @@ TEST(BlockContact, BoxesThatTouchExactlyOverlap) {
   Track b{{10, 4.0, 4.0}, {0, 0, 0}, {1, 1, 1}, {0, 0, 0}, 2.0, 1.0};  // step 1: edge to edge
   ASSERT_TRUE(core::BoxesOverlap(a.Box(1), b.Box(1)));
   ASSERT_FALSE(core::BoxesOverlap(a.Box(0), b.Box(0)));
-  EXPECT_EQ(first(a.View(), b.View(), 0, 3, 3), 1);
+  EXPECT_EQ(first(a.View(), b.View(), 0, 3, Reach2(a, b), 3), 1);
   b.x[1] = std::nextafter(4.0, 5.0);  // apart by one ulp at step 1: step 2 first
-  EXPECT_EQ(first(a.View(), b.View(), 0, 3, 3), 2);
-  EXPECT_EQ(first(a.View(), b.View(), 0, 2, 3), -1);  // step 2 is past the block
+  EXPECT_EQ(first(a.View(), b.View(), 0, 3, Reach2(a, b), 3), 2);
+  EXPECT_EQ(first(a.View(), b.View(), 0, 2, Reach2(a, b), 3), -1);  // step 2 is past the block
 }
 
 }  // namespace
