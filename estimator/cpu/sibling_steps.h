@@ -6,9 +6,10 @@
 // dispatch: AVX-512, AVX2, SSE4, NEON, ... from one source), through the same steps as
 // core::VehicleStep (controller, two-track or one-track model, the kinematic model below the
 // seam speed, lane by lane through masks, Euler step, pose), with the same arithmetic in the
-// same order; only sin, cos, atan and tan (as sin / cos) come from Highway's vector math
-// (within 3 ulp of libm) instead of libm. An angle that needs wrapping is wrapped lane by lane
-// by core::WrapAngle.
+// same order; only sin, cos, atan and tan (as sin / cos) differ from libm's: Highway's vector
+// math (within 3 ulp), or for angles within 0.35 rad their Taylor series (within 2 ulp), and
+// the new yaw's cos/sin by angle addition from the step before's. An angle that needs wrapping
+// is wrapped lane by lane by core::WrapAngle.
 //
 // CosSin is the same vector math over an array (the poses' cos/sin for the box tests).
 #include <cstddef>
