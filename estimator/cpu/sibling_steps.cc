@@ -97,7 +97,7 @@ HWY_INLINE void SinCos(D d, V x, V* s, V* c) {
     return;
   }
   const V x2 = hn::Mul(x, x);
-  // sin x = x (1 - x^2/3! (1 - x^2/(4 5) (1 - ...))), the same nesting for cos x.
+  // Horner in x^2 over the series' coefficients, highest first.
   V ps = hn::Set(d, -1.0 / 6227020800.0);  // -1/13!
   ps = hn::MulAdd(ps, x2, hn::Set(d, 1.0 / 39916800.0));
   ps = hn::MulAdd(ps, x2, hn::Set(d, -1.0 / 362880.0));
