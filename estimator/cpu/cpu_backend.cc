@@ -452,6 +452,9 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
         near[q - q0] = bx * bx + by * by <= br * br;
         any_near |= near[q - q0] != 0;
       }
+      // The node's path for the lanes' box test (its poses from step 0).
+      const internal::BoxTrack ego_track{&ego_.x[ei],   &ego_.y[ei], &ego_cos_[ei],
+                                         &ego_sin_[ei], ego_hl,      ego_hw};
       std::vector<int>& next = live[k + 1];
       next.clear();
       for (const int j : live[k]) {
@@ -464,20 +467,17 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
         int hit = 0;
         if (any_near) {
           const size_t cj = co_.Offset(j), cb = static_cast<size_t>(j) * blocks;
+          const internal::BoxTrack co_track{&co_.x[cj],   &co_.y[cj],     &co_cos_[cj],
+                                            &co_sin_[cj], co.half_length, co.half_width};
+          const long readable = static_cast<long>(std::min(ego_.x.size() - ei, co_.x.size() - cj));
           for (int q = q0; q < q1 && hit == 0; ++q) {
             if (!near[q - q0]) continue;
             const Circle &e = ego_bounds_.c[eb + q], &o = co_bounds_.c[cb + q];
             const double bx = e.cx - o.cx, by = e.cy - o.cy, br = e.r + o.r + reach;
             if (bx * bx + by * by > br * br) continue;  // the whole block is apart
             if (first_overlap) {  // the block's steps in SIMD lanes, the same test
-              const internal::BoxTrack a{&ego_.x[ei],   &ego_.y[ei], &ego_cos_[ei],
-                                         &ego_sin_[ei], ego_hl,      ego_hw};
-              const internal::BoxTrack b{&co_.x[cj],   &co_.y[cj],     &co_cos_[cj],
-                                         &co_sin_[cj], co.half_length, co.half_width};
-              const long readable =
-                  static_cast<long>(std::min(ego_.x.size() - ei, co_.x.size() - cj));
-              const int n =
-                  first_overlap(a, b, block_begin_[q], block_begin_[q + 1], reach2, readable);
+              const int n = first_overlap(ego_track, co_track, block_begin_[q], block_begin_[q + 1],
+                                          reach2, readable);
               if (n >= 0) hit = n + 1;
               continue;
             }
