@@ -129,6 +129,7 @@ WayLine LineBehind(RoadNetwork& network, const std::string& lane, double lane_po
     const double dx = way.line.front().x - shape.back().x;
     const double dy = way.line.front().y - shape.back().y;
     for (Point2& p : shape) p = Point2{p.x + dx, p.y + dy};
+    way.shifted_m = std::max(way.shifted_m, std::hypot(dx, dy));
     way.front_m += PolylineLength(shape);
     shape.insert(shape.end(), way.line.begin() + 1, way.line.end());
     way.line.swap(shape);

@@ -34,6 +34,9 @@ std::optional<Point2> PointBehind(RoadNetwork& network, const std::string& lane,
 struct WayLine {
   std::vector<Point2> line;
   double front_m{0.0};  ///< arc length of the front along `line`
+  /** The largest sideways move of a lane behind onto the next: millimetres where netconvert's
+   *  joints meet, a lane's spacing where the vehicle changed lanes since those lanes. */
+  double shifted_m{0.0};
 };
 WayLine LineBehind(RoadNetwork& network, const std::string& lane, double lane_position_m,
                    double metres, const std::vector<std::string>& route, int route_index);

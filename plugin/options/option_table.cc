@@ -147,6 +147,10 @@ void OptionTable::Estimator(DriverOptions* o) {
       "ablation (ours): take every vehicle's heading as SUMO reports it, also where it turns "
       "faster than the vehicle can between two steps (at a junction's corners; by default "
       "held up to 0.5 s: plugin/README.md, \"Headings\")")(
+      "no-way-heading", po::bool_switch(&raw.no_way_heading),
+      "ablation (ours): take SUMO's angle also just after a lane change past a junction, where "
+      "it points from the body's back, still on the old lane, to its front in the new one (by "
+      "default the heading of the way behind the new lane: plugin/README.md, \"Headings\")")(
       "bodies-on-path", po::bool_switch(&raw.bodies_on_path),
       "experimental (ours, off by default: it did not help the held-out networks as a whole, "
       "bench/RESULTS.md): every vehicle of one box (no carriages) is SUMO's box of it (front to "

@@ -56,6 +56,22 @@ Pose2 HeadPose(const SumoObject& o, const WayLine& way, double length_m) {
   return Pose2{o.x_m - 0.5 * length_m * std::cos(yaw), o.y_m - 0.5 * length_m * std::sin(yaw), yaw};
 }
 
+// A lane change since the lanes behind: one of them moved sideways onto the next by more than
+// netconvert's joints are apart (millimetres; lanes are 2 m apart or more).
+constexpr double kLaneChangeShiftM = 0.5;
+
+// The heading of a body `length_m` long along `way` (from its back to its front) where the way
+// was moved sideways by a lane change (WayLine::shifted_m); nullopt otherwise, or where the way
+// is not known that far back.
+std::optional<double> ChangedLanesHeading(const WayLine& way, double length_m) {
+  if (!(way.shifted_m > kLaneChangeShiftM)) return std::nullopt;
+  const std::optional<Point2> back = PointOnWay(way, length_m);
+  const std::optional<Point2> front = PointOnWay(way, 0.0);
+  if (!back || !front || std::hypot(front->x - back->x, front->y - back->y) < 1e-6)
+    return std::nullopt;
+  return std::atan2(front->y - back->y, front->x - back->x);
+}
+
 }  // namespace
 
 ObjectReader::ObjectReader(const SceneConfig& config, double step_s, RoadNetwork* network,
@@ -158,11 +174,22 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
                                                                           : body.head_length_m;
   s.width_m = o.width_m;
   if (o.height_m > 0.0) s.height_m = o.height_m;
+  // Just past a junction, after a lane change within one step: the heading of the way its new
+  // lane came by (SceneConfig::way_heading), not SUMO's angle from the back left on the old lane.
+  double angle_deg = o.angle_deg;
+  if (config_.way_heading && config_.instant_lane_changes && !o.lane.empty() && !s.parked &&
+      o.lane_position_m < o.length_m && ChangedLanesSinceTheJunction(o)) {
+    if (!config_.bent_bodies)
+      way = LineBehind(*network_, o.lane, o.lane_position_m, o.length_m + 1.0, o.route,
+                       o.route_index);
+    if (const std::optional<double> yaw = ChangedLanesHeading(way, o.length_m))
+      angle_deg = YawToNavigationDeg(*yaw);
+  }
   bool held = false;
-  const double heading = HeadingOf(o, sumo_time_s, &held);
+  const double heading = HeadingOf(o, angle_deg, sumo_time_s, &held);
   const Pose2 c =
       one_box || !config_.bent_bodies
-          ? FrontBumperToCentre(o.x_m, o.y_m, held ? YawToNavigationDeg(heading) : o.angle_deg,
+          ? FrontBumperToCentre(o.x_m, o.y_m, held ? YawToNavigationDeg(heading) : angle_deg,
                                 s.length_m)
           : HeadPose(o, way, s.length_m);
   s.state.x_m = c.x;
@@ -224,7 +251,8 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   return s;
 }
 
-double ObjectReader::HeadingOf(const SumoObject& o, double sumo_time_s, bool* held) const {
+double ObjectReader::HeadingOf(const SumoObject& o, double angle_deg, double sumo_time_s,
+                               bool* held) const {
   // SUMO moves a vehicle along its lanes and turns it to their direction: at the corners of a
   // junction's internal lane its heading can jump by tens of degrees for a step or two and
   // back (35 degrees at 12 m/s for 0.4 s on a netgenerate rand net), a turn no vehicle
@@ -238,7 +266,7 @@ double ObjectReader::HeadingOf(const SumoObject& o, double sumo_time_s, bool* he
   // (lanechange.duration > 0, the sublane model), a sudden heading change on a normal lane is
   // the start of a lane change (SUMO turns the vehicle by atan(lateral speed / speed) at once)
   // and is taken as it is; only the junctions' corners are held.
-  const double angle = NavigationDegToYaw(o.angle_deg);
+  const double angle = NavigationDegToYaw(angle_deg);
   *held = false;
   if (!config_.heading_hold) return angle;
   auto it = last_yaw_.find(o.id);
@@ -255,6 +283,22 @@ double ObjectReader::HeadingOf(const SumoObject& o, double sumo_time_s, bool* he
   if (!(std::fabs(WrapAngle(angle - on)) > r_max * dt)) return angle;
   *held = true;
   return on;
+}
+
+bool ObjectReader::ChangedLanesSinceTheJunction(const SumoObject& o) {
+  if (IsInternal(o.lane) || o.route_index < 1 || o.route_index >= static_cast<int>(o.route.size()))
+    return false;
+  const std::string& before = o.route[o.route_index - 1];
+  const std::string key = before + '\n' + o.lane;
+  auto it = reached_from_.find(key);
+  if (it == reached_from_.end()) {
+    bool reached = false;
+    for (int k = 0; k < network_->LaneCount(before) && !reached; ++k)
+      for (const LaneLink& link : network_->Links(before + "_" + std::to_string(k)))
+        reached = reached || link.lane == o.lane;
+    it = reached_from_.emplace(key, reached).first;
+  }
+  return !it->second;
 }
 
 double ObjectReader::GripYawRate(double speed_mps) const {

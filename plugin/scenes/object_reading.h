@@ -46,6 +46,9 @@ class ObjectReader {
   /** A parked vehicle beside its lane: its position is more than half a lane width off the
    *  lane's centre line (a parking area beside the road). */
   bool OffItsLane(const SumoObject& o);
+  /** Its front is on a normal lane that no link of its previous route edge leads to: it changed
+   *  lanes since it left the junction (remembered per edge and lane: the links do not change). */
+  bool ChangedLanesSinceTheJunction(const SumoObject& o);
   /** The largest yaw rate a vehicle at this speed can turn at within grip: v r <= mu g. */
   double GripYawRate(double speed_mps) const;
   /** Plausible states: a yaw rate within grip (the lane's where SUMO's heading jumped), an
@@ -67,13 +70,16 @@ class ObjectReader {
     double taken_s{0.0};
     bool in_junction{false};  ///< it was on a junction's internal lane
   };
-  /** The heading a vehicle is read with: SUMO's, except where it changed since the previous
+  /** The heading a vehicle is read with: SUMO's (`angle_deg`, SceneConfig::way_heading's
+   *  where it replaced it), except where it changed since the previous
    *  step faster than the vehicle can turn, after an instantaneous lane change or at a
    *  junction's corner (SceneConfig::heading_hold): then the previous heading turned on at the
    *  previous yaw rate, for at most kMaxHeadingHoldS since SUMO's was last taken. */
-  double HeadingOf(const SumoObject& o, double sumo_time_s, bool* held) const;
+  double HeadingOf(const SumoObject& o, double angle_deg, double sumo_time_s, bool* held) const;
 
   std::unordered_map<std::string, LastHeading> last_yaw_;  ///< id -> its previous read
+  /** "previous edge\nlane" -> whether a link of that edge leads to the lane. */
+  std::unordered_map<std::string, bool> reached_from_;
   long long conditioned_{0};
 };
 

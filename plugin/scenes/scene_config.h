@@ -58,6 +58,15 @@ struct SceneConfig {
    *  instantaneous, and on or just off a junction's internal lane (ObjectReader::HeadingOf);
    *  --no-heading-hold turns it off. Reads only the heading's history, which sensors see. */
   bool heading_hold{true};
+  /** After a lane change within one step made while the body's back still stands on the lanes
+   *  behind the old lane (just past a junction), SUMO's angle points from that back to the
+   *  front in the new lane, often against the turn it is finishing. Where SUMO's lane changes
+   *  are instantaneous, a vehicle whose front is less than its length into a normal lane that
+   *  no link of its previous route edge leads to is read with the heading of the way behind
+   *  that lane (the lanes it came by moved sideways onto it, way_behind.h), as if it had come
+   *  by that lane (ObjectReader::Vehicle); --no-way-heading takes SUMO's angle. Reads the lane
+   *  geometry and the edges the vehicle came by, which sensors see. */
+  bool way_heading{true};
   /** SUMO moves a vehicle into the next lane within one step (no sublane model,
    *  lanechange.duration 0, SUMO's defaults); set by the driver from SUMO's options. */
   bool instant_lane_changes{true};

@@ -49,6 +49,10 @@ VARIANTS = [
             "ours taking SUMO's heading as it is, also where it turns faster than grip allows "
             "(--no-heading-hold)",
             {"act": "warn", "no-heading-hold": "true"}),
+    Variant("no-way-heading",
+            "ours taking SUMO's angle also just after a lane change past a junction "
+            "(--no-way-heading)",
+            {"act": "warn", "no-way-heading": "true"}),
     Variant("horizon-3", "ours predicting 3 s ahead (--horizon 3) instead of the paper's 2 s",
             {"act": "warn", "horizon": "3"}),
     Variant("paper-literal", "the first implementation's scoring (ParamsPreset paper-literal)",

@@ -115,6 +115,10 @@ TEST(WayBehind, AVehicleThatChangedLanesAfterTheJunctionCameByTheLinkBesideIt) {
   EXPECT_NEAR(past_joint->x, 0.0, 1e-9);
   EXPECT_NEAR(past_joint->y, 1.5, 1e-9);
   EXPECT_FALSE(PointOnWay(way, way.front_m + 1.0).has_value());
+  // The lanes behind were moved by the lanes' spacing, which tells the lane change.
+  EXPECT_NEAR(way.shifted_m, 3.2, 1e-9);
+  // Where the vehicle kept its lane the lanes behind meet it: nothing moved.
+  EXPECT_NEAR(LineBehind(w, "E_0", 2.0, 5.0, route, 1).shifted_m, 0.0, 1e-9);
 }
 
 }  // namespace

@@ -436,6 +436,51 @@ TEST(SceneStage, AHeadingSumoTurnsFasterThanGripIsHeldForAtMostHalfASecond) {
   EXPECT_NEAR(HeadingsRead(config, glitch)[0], 32.0, 1e-9);
 }
 
+// A right turn into a two-lane road: N runs north to (0, 0), the turn's internal lane goes
+// (0, 0) -> (0, 3.4) -> (5, 3.4) into E's lane 0 (y = 3.4; lane 1 at y = 6.6), E runs east from
+// x = 5. A 5 m car whose front is `position_m` into E on `lane`, with SUMO's angle `angle_deg`:
+// the heading it is read with, in degrees.
+double HeadingPastTheTurn(const SceneConfig& config, const std::string& lane, double position_m,
+                          double angle_deg, double* centre_y = nullptr) {
+  FakeSumoWorld w;
+  w.AddEdge("N", 0, -100, 0, 0, 1);
+  w.AddLaneShape(":J_0", {Point2{0, 0}, Point2{0, 3.4}, Point2{5, 3.4}});
+  w.AddEdge("E", 5, 5, 105, 5, 2);
+  w.AddLinkVia("N_0", "E_0", ":J_0_0", "r");
+  w.AddLink(":J_0_0", "E_0");
+  const double y = lane == "E_1" ? 6.6 : 3.4;
+  SumoObject& car =
+      w.AddVehicle("car", 5 + position_m, y, angle_deg, 8.0, lane, position_m, {"N", "E"});
+  car.route_index = 1;
+  SceneStage stage(config, w.StepLength(), true, &w, &w);
+  const Scene s = stage.Run(Observe(w, {"car"})).scenes.at(0);
+  if (centre_y) *centre_y = s.ego.state.y_m;
+  return s.ego.state.yaw_rad * 180.0 / kPi;
+}
+
+TEST(SceneStage, AfterALaneChangeJustPastAJunctionTheHeadingIsTheWayOfItsNewLane) {
+  // The car came through the turn into E_0 and changed into E_1 within one step, 1 m into E:
+  // SUMO's back stays on the turn 4 m before its end, at (1, 3.4), so SUMO's angle points from
+  // there to the front at (6, 6.6): 32.6 degrees left of the road, 57.4 in navigation degrees.
+  const double sumo = std::atan2(3.2, 5.0) * 180.0 / kPi;
+  SceneConfig config;  // SUMO's defaults: lanechange.duration 0
+  double centre_y = 0.0;
+  // Read along the turn moved onto E_1: its back at (1, 6.6), heading east, centred on E_1.
+  EXPECT_NEAR(HeadingPastTheTurn(config, "E_1", 1.0, 90.0 - sumo, &centre_y), 0.0, 1e-9);
+  EXPECT_NEAR(centre_y, 6.6, 1e-9);
+  // Without a lane change SUMO's angle is taken, whatever it is (here 5 degrees left).
+  EXPECT_NEAR(HeadingPastTheTurn(config, "E_0", 1.0, 85.0), 5.0, 1e-9);
+  // Once the whole body is on E_1 its back has followed: SUMO's angle again.
+  EXPECT_NEAR(HeadingPastTheTurn(config, "E_1", 6.0, 85.0), 5.0, 1e-9);
+  // --no-way-heading takes SUMO's angle; so does a run where SUMO moves lane changes over time.
+  SceneConfig off;
+  off.way_heading = false;
+  EXPECT_NEAR(HeadingPastTheTurn(off, "E_1", 1.0, 90.0 - sumo), sumo, 1e-9);
+  SceneConfig gradual;
+  gradual.instant_lane_changes = false;
+  EXPECT_NEAR(HeadingPastTheTurn(gradual, "E_1", 1.0, 90.0 - sumo), sumo, 1e-9);
+}
+
 TEST(SceneStage, ATeleportForgetsTheHeadingThatWouldBeHeld) {
   // 32 degrees in 0.1 s: held without the teleport (the test above), taken after it.
   EXPECT_NEAR(HeadingsRead(SceneConfig{}, {58}, /*teleported_at=*/0)[0], 32.0, 1e-9);
