@@ -8,7 +8,9 @@
 // for a walking person whether it keeps to the footway (footway.h). What each driver is then
 // expected to do is set once the whole step is read (expected_accel.h). A state no vehicle of
 // its kind can be in is made plausible and counted (Plausible: a yaw rate or an acceleration;
-// HeadingOf: SUMO's heading jumping for a few steps at a junction's corners); values that are not
+// HeadingOf: SUMO's heading jumping for a few steps at a junction's corners; after a lane change
+// just past a junction the heading of the way behind the new lane, SceneConfig::way_heading);
+// values that are not
 // numbers (NaN) are passed on: scene building leaves out what the estimator cannot use.
 #include <string>
 #include <unordered_map>
