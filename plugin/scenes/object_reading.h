@@ -10,8 +10,8 @@
 // its kind can be in is made plausible and counted (Plausible: a yaw rate or an acceleration;
 // HeadingOf: SUMO's heading jumping for a few steps at a junction's corners; after a lane change
 // just past a junction the heading of the way behind the new lane, SceneConfig::way_heading);
-// values that are not
-// numbers (NaN) are passed on: scene building leaves out what the estimator cannot use.
+// values that are not numbers (NaN) are passed on: scene building leaves out what the estimator
+// cannot use.
 #include <string>
 #include <unordered_map>
 #include <utility>
