@@ -14,6 +14,26 @@ bool PedestriansOnly(RoadNetwork& network, const std::string& lane) {
   return allowed.size() == 1 && allowed[0] == "pedestrian";
 }
 
+std::vector<std::string> InternalChain(RoadNetwork& network, const LaneLink& link) {
+  std::vector<std::string> chain;
+  std::string lane = link.internal;
+  for (int hop = 0; hop < 8 && IsInternal(lane); ++hop) {
+    chain.push_back(lane);
+    const std::vector<LaneLink>& on = network.Links(lane);
+    if (on.empty()) break;
+    lane = IsInternal(on.front().internal) ? on.front().internal : on.front().lane;
+  }
+  return chain;
+}
+
+std::vector<std::string> InternalLanesBetween(RoadNetwork& network, const std::string& from,
+                                              const std::string& to) {
+  for (const LaneLink& l : network.Links(from)) {
+    if (l.lane == to) return InternalChain(network, l);
+  }
+  return {};
+}
+
 std::string NextLaneOnRoute(RoadNetwork& network, const std::string& lane,
                             const std::vector<std::string>& route, int* route_index) {
   const std::vector<LaneLink>& links = network.Links(lane);

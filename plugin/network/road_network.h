@@ -59,6 +59,17 @@ bool Allows(RoadNetwork& network, const std::string& lane, const std::string& vc
 /** Whether only pedestrians may use `lane` (a sidewalk, walking area or crossing). */
 bool PedestriansOnly(RoadNetwork& network, const std::string& lane);
 
+/** A junction's internal lanes from a link on, in driving order: the link's own, then on while
+ *  the next one is internal too (a turn that an internal junction splits runs through two).
+ *  Empty when the link has none. */
+std::vector<std::string> InternalChain(RoadNetwork& network, const LaneLink& link);
+
+/** The internal lanes (InternalChain) of the link from lane `from` to lane `to`, which
+ *  getLinks names by the lane after the junction; empty when no link leads there or it runs
+ *  through no internal lane. */
+std::vector<std::string> InternalLanesBetween(RoadNetwork& network, const std::string& from,
+                                              const std::string& to);
+
 /** The lane a vehicle on `lane` drives onto next: inside a junction the one lane its internal
  *  lane leads to; otherwise a link to the next edge of `route` after `lane`'s edge (searched
  *  from *route_index on, which is advanced to that edge). "" when the route ends here or no

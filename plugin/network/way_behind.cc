@@ -9,20 +9,6 @@
 namespace criticality::plugin {
 namespace {
 
-// A junction's internal lanes from a link on: the link's own, then on while the next one is
-// internal too (a turn an internal junction splits runs through two).
-std::vector<std::string> InternalChain(RoadNetwork& network, const LaneLink& link) {
-  std::vector<std::string> chain;
-  std::string lane = link.internal;
-  for (int hop = 0; hop < 8 && IsInternal(lane); ++hop) {
-    chain.push_back(lane);
-    const std::vector<LaneLink>& on = network.Links(lane);
-    if (on.empty()) break;
-    lane = IsInternal(on.front().internal) ? on.front().internal : on.front().lane;
-  }
-  return chain;
-}
-
 // The lanes from the previous route edge's lane to `lane`, that lane first and `lane` not
 // included; empty when not known. Moves *route_index to that edge. A vehicle that changed lanes
 // since it left the junction came by a link to a lane beside `lane` (its body's back is still

@@ -178,6 +178,7 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_crossing_stops) o->scenes.crossing_stops = false;
   if (raw.no_heading_hold) o->scenes.heading_hold = false;
   if (raw.no_way_heading) o->scenes.way_heading = false;
+  if (raw.junction_shapes) o->scenes.junction_shapes = true;
   if (raw.bent_bodies) o->scenes.bent_bodies = true;
   if (raw.bodies_on_path) o->scenes.bodies_on_path = true;
   o->params = p;

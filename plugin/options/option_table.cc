@@ -151,6 +151,11 @@ void OptionTable::Estimator(DriverOptions* o) {
       "ablation (ours): take SUMO's angle also just after a lane change past a junction, where "
       "it points from the body's back, still on the old lane, to its front in the new one (by "
       "default the heading of the way behind the new lane: plugin/README.md, \"Headings\")")(
+      "junction-shapes", po::bool_switch(&raw.junction_shapes),
+      "experimental (ours, off by default: it did not help the held-out networks as a whole, "
+      "bench/RESULTS.md): draw the lanes ahead through a junction along its internal lanes "
+      "(the turn SUMO drives), not as the straight chord from the lane's end to the next "
+      "lane's start")(
       "bodies-on-path", po::bool_switch(&raw.bodies_on_path),
       "experimental (ours, off by default: it did not help the held-out networks as a whole, "
       "bench/RESULTS.md): every vehicle of one box (no carriages) is SUMO's box of it (front to "

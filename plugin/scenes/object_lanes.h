@@ -36,6 +36,9 @@ struct VehicleOnLane {
    *  straight on), never its route, and where its route ends is not known. */
   bool observable_only{false};
   Blinker blinker{Blinker::kNone};
+  /** Its way through a junction follows the junction's internal lanes (SceneConfig::
+   *  junction_shapes); false: the chord from the lane's end to the next lane's start. */
+  bool junction_shapes{false};
 };
 
 /** The lane the vehicle drives onto after `lane`: along its route (NextLaneOnRoute, advancing
@@ -60,10 +63,11 @@ struct ObjectLanes {
 };
 
 /** Extends the corridor's centre line (starting with the vehicle's lane) along its way
- *  (NextLaneOf), as far as it can get within `reach` of the corridor's position (at most 8 lanes
- *  on, and at least out of the junction it is in). Sets *beyond_junction to the first normal
- *  lane after an internal one, and *route_end to how far its front still goes when the route
- *  ends within the corridor (never with observable_only). */
+ *  (NextLaneOf; through a junction along its internal lanes with junction_shapes), as far as it can
+ * get within `reach` of the corridor's position (at most 8 lanes on, and at least out of the
+ * junction it is in). Sets *beyond_junction to the first normal lane after an internal one, and
+ * *route_end to how far its front still goes when the route ends within the corridor (never with
+ * observable_only). */
 void FollowRoute(const VehicleOnLane& v, double reach, RoadNetwork* network, LaneCorridor* c,
                  std::string* beyond_junction, std::optional<double>* route_end);
 

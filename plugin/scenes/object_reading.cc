@@ -244,6 +244,7 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   v.vehicle_class = o.vehicle_class;
   v.observable_only = config_.observable_only;
   v.blinker = BlinkerOf(o.signals);
+  v.junction_shapes = config_.junction_shapes;
   const ObjectLanes lanes = LanesOf(v, config_, step_s_, network_, &counter_lanes_);
   s.lanes = lanes.lanes;
   s.state.route_end_m = lanes.route_end_m;
