@@ -312,6 +312,34 @@ inline void AddSquareRightTurn(FakeSumoWorld& w) {
   w.AddLink(":J_0_0", "E_0", "M", false, "r");
 }
 
+/** Half a circle of radius 2 around (-2, 0) from angle a0 to a1 (radians), counter-clockwise,
+ *  in 9 points. */
+inline std::vector<Point2> UTurnArc(double a0, double a1) {
+  std::vector<Point2> p;
+  for (int k = 0; k <= 8; ++k) {
+    const double a = a0 + (a1 - a0) * k / 8.0;
+    p.push_back(Point2{-2.0 + 2.0 * std::cos(a), 2.0 * std::sin(a)});
+  }
+  return p;
+}
+
+/** SUMO's U-turn at a junction that an internal junction splits (the grid's :B2_14_0 then
+ *  :B2_28_0): N runs north to (0, 0), the turn bends left around (-2, 0) in two internal lanes
+ *  (:J_14_0 to the apex (-2, 2), :J_28_0 on to (-4, 0)), S runs south from (-4, 0). TraCI's
+ *  links: N_0 to S_0 via the first part, the first part to S_0 via the second. */
+inline FakeSumoWorld SplitUTurn() {
+  constexpr double kHalfPi = 1.5707963267948966;
+  FakeSumoWorld w;
+  w.AddEdge("N", 0, -100, 0, 0, 1);
+  w.AddLaneShape(":J_14", UTurnArc(0.0, kHalfPi));
+  w.AddLaneShape(":J_28", UTurnArc(kHalfPi, 2.0 * kHalfPi));
+  w.AddEdge("S", -4, 0, -4, -100, 1);
+  w.AddLinkVia("N_0", "S_0", ":J_14_0", "t");
+  w.AddLinkVia(":J_14_0", "S_0", ":J_28_0", "t");
+  w.AddLink(":J_28_0", "S_0", "M", false, "t");
+  return w;
+}
+
 /** An observation of every object of the world, each vehicle in `egos` an ego with every other
  *  object near it, read at the world's time (what the observe stage hands the scene stage). */
 inline Observation ObserveAll(FakeSumoWorld& w, const std::vector<std::string>& egos) {

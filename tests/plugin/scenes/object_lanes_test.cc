@@ -15,28 +15,7 @@ namespace {
 
 using testing::FakeSumoWorld;
 
-// A left U-turn of radius 2 around (-2, 0): N runs north to (0, 0), the turn's two internal
-// parts (an internal junction splits it) bend to (-4, 0), S runs south from there.
-std::vector<Point2> Arc(double a0, double a1) {
-  std::vector<Point2> p;
-  for (int k = 0; k <= 8; ++k) {
-    const double a = a0 + (a1 - a0) * k / 8.0;
-    p.push_back(Point2{-2.0 + 2.0 * std::cos(a), 2.0 * std::sin(a)});
-  }
-  return p;
-}
-
-FakeSumoWorld UTurn() {
-  FakeSumoWorld w;
-  w.AddEdge("N", 0, -100, 0, 0, 1);
-  w.AddLaneShape(":J_14", Arc(0.0, 0.5 * kPi));
-  w.AddLaneShape(":J_28", Arc(0.5 * kPi, kPi));
-  w.AddEdge("S", -4, 0, -4, -100, 1);
-  w.AddLinkVia("N_0", "S_0", ":J_14_0", "t");
-  w.AddLinkVia(":J_14_0", "S_0", ":J_28_0", "t");
-  w.AddLink(":J_28_0", "S_0", "M", false, "t");
-  return w;
-}
+FakeSumoWorld UTurn() { return testing::SplitUTurn(); }
 
 // The corridor's largest distance north of y = 0 (how far it reaches into the turn).
 double NorthMost(const LaneCorridor& c) {
