@@ -34,15 +34,16 @@ void FollowRoute(const VehicleOnLane& v, double reach, RoadNetwork* network, Lan
       // getLinks names the lane after the junction. With junction_shapes the way there runs
       // through the junction's internal lanes (their shape: the turn); without, the centre
       // line jumps along the chord between the two lanes.
-      std::vector<std::string> way;
-      if (v.junction_shapes) way = InternalLanesBetween(*network, current, next);
-      way.push_back(next);
-      for (const std::string& lane : way) {
+      auto append = [&](const std::string& lane) {
         for (const Point2& p : network->Lane(lane).shape) {
           const Point2& last = c->centre.back();
           if (std::hypot(p.x - last.x, p.y - last.y) > 1e-3) c->centre.push_back(p);
         }
+      };
+      if (v.junction_shapes) {
+        for (const std::string& lane : InternalLanesBetween(*network, current, next)) append(lane);
       }
+      append(next);
       length = PolylineLength(c->centre);
     }
     current = next;

@@ -63,11 +63,11 @@ struct ObjectLanes {
 };
 
 /** Extends the corridor's centre line (starting with the vehicle's lane) along its way
- *  (NextLaneOf; through a junction along its internal lanes with junction_shapes), as far as it can
- * get within `reach` of the corridor's position (at most 8 lanes on, and at least out of the
- * junction it is in). Sets *beyond_junction to the first normal lane after an internal one, and
- * *route_end to how far its front still goes when the route ends within the corridor (never with
- * observable_only). */
+ *  (NextLaneOf; with junction_shapes through a junction along its internal lanes), as far as
+ *  it can get within `reach` of the corridor's position (at most 8 lanes on, and at least out
+ *  of the junction it is in). Sets *beyond_junction to the first normal lane after an internal
+ *  one, and *route_end to how far its front still goes when the route ends within the corridor
+ *  (never with observable_only). */
 void FollowRoute(const VehicleOnLane& v, double reach, RoadNetwork* network, LaneCorridor* c,
                  std::string* beyond_junction, std::optional<double>* route_end);
 
