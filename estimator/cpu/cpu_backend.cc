@@ -303,6 +303,18 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   // a skipped node has none and adds nothing).
   const size_t n_node_bounds = static_cast<size_t>(ego.n_profiles) * nodes;
   node_bounds_.c.resize(n_node_bounds);
+  node_still_.assign(n_node_bounds, 0);
+  // Whether path `first`'s poses (centre, cos, sin) over steps [n0, n1) all equal its pose at
+  // step `at` (bit for bit).
+  auto holds_pose = [&](int first, int at, int n0, int n1) {
+    const size_t b = ego_.Offset(first);
+    const double x = ego_.x[b + at], y = ego_.y[b + at], c = ego_cos_[b + at], s = ego_sin_[b + at];
+    for (int n = n0; n < n1; ++n) {
+      if (ego_.x[b + n] != x || ego_.y[b + n] != y || ego_cos_[b + n] != c || ego_sin_[b + n] != s)
+        return false;
+    }
+    return true;
+  };
   auto sweep = [&](auto&& self, int profile, int k, int group) -> Aabb {
     Aabb box;
     if (k >= core::kMaxSampleInstants) return box;  // never: K <= kMaxSampleInstants
@@ -310,9 +322,25 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
     if (node_skipped_[nb]) return box;
     const Box& span = node_span_box_[nb];  // the span's poses (FinishSpan's block boxes)
     box.Add(Aabb{span.x0, span.x1, span.y0, span.y1});
+    // Still: the span holds one pose, and every child's subtree holds the same.
+    const int width = Power(L, K - 1 - k);
+    const int first = profile * ego.n_paths + group * width, n0 = boundary_[k];
+    bool still = boundary_[k + 1] > n0 && holds_pose(first, n0, n0 + 1, boundary_[k + 1]);
     if (k + 1 < K) {
-      for (int c = 0; c < L; ++c) box.Add(self(self, profile, k + 1, group * L + c));
+      for (int c = 0; c < L; ++c) {
+        box.Add(self(self, profile, k + 1, group * L + c));
+        const size_t child =
+            static_cast<size_t>(profile) * nodes + node_offset_[k + 1] + group * L + c;
+        // The child's pose at its first step is its own first path's.
+        if (still) {
+          const int child_first = first + c * (width / L), m0 = boundary_[k + 1];
+          const size_t a = ego_.Offset(first) + n0, bc = ego_.Offset(child_first) + m0;
+          still = node_still_[child] && ego_.x[bc] == ego_.x[a] && ego_.y[bc] == ego_.y[a] &&
+                  ego_cos_[bc] == ego_cos_[a] && ego_sin_[bc] == ego_sin_[a];
+        }
+      }
     }
+    node_still_[nb] = still;
     StoreCircle(box, nb, &node_bounds_.c);
     return box;
   };
@@ -401,11 +429,6 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
     }
   }
   const int nodes = node_offset_[K];
-  const int max_span_blocks = [&] {
-    int m = 0;
-    for (int k = 0; k < K; ++k) m = std::max(m, phase_block_[k + 1] - phase_block_[k]);
-    return m;
-  }();
   // The box tests of a block in SIMD lanes (simd_).
   static_assert(kBlockSteps <= internal::kMaxBlockContactSteps, "a block must fit the lanes");
   const internal::FirstOverlapFn first_overlap = simd_ ? internal::FirstOverlapInBlock() : nullptr;
@@ -416,8 +439,15 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
     // not apart); near: the blocks of the current span where the object's circle meets the
     // node's.
     std::vector<int> live[core::kMaxSampleInstants + 1];
-    std::vector<char> near(max_span_blocks);
+    std::vector<char> near(blocks);
     const Task t = tasks[task];
+    // The last still node's level and pose, and its first hits per trajectory of the task
+    // (-1: not yet looked for).
+    struct StillPose {
+      int k;
+      double x, y, c, s;
+    } still_cache{-1, 0.0, 0.0, 0.0, 0.0};
+    std::vector<int> still_hit(t.j1 - t.j0, -1);
     const core::HypothesisSet& co = pb.cos[t.object];
     // Centres farther apart than the sum of the bounding radii cannot overlap; the small
     // margin keeps exactly touching boxes for the exact test. The object-wide tests add a
@@ -442,8 +472,13 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
       const int width = Power(L, K - 1 - k);
       const int first = t.profile * ego.n_paths + group * width;
       const size_t ei = ego_.Offset(first), eb = static_cast<size_t>(first) * blocks;
-      // The span's blocks where the object (all its trajectories) comes near the node.
-      const int q0 = phase_block_[k], q1 = phase_block_[k + 1];
+      // A still subtree (every path below holds the node's first pose to the horizon): each
+      // trajectory's first hit is found once along the node's first path over every block
+      // from the span on, with the same tests as node by node (there they would repeat for
+      // every path, the same poses), and holds for all the paths below.
+      const bool still = node_still_[nb] != 0;
+      // The blocks [q0, q1) where the object (all its trajectories) comes near the node.
+      const int q0 = phase_block_[k], q1 = still ? blocks : phase_block_[k + 1];
       bool any_near = false;
       for (int q = q0; q < q1; ++q) {
         const Circle &e = ego_bounds_.c[eb + q],
@@ -455,6 +490,16 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
       // The node's path for the lanes' box test (its poses from step 0).
       const internal::BoxTrack ego_track{&ego_.x[ei],   &ego_.y[ei], &ego_cos_[ei],
                                          &ego_sin_[ei], ego_hl,      ego_hw};
+      // The same pose at the same step as the last still node's: the same first hits.
+      if (still) {
+        const size_t at = ei + boundary_[k];
+        const StillPose pose{k, ego_.x[at], ego_.y[at], ego_cos_[at], ego_sin_[at]};
+        if (pose.k != still_cache.k || pose.x != still_cache.x || pose.y != still_cache.y ||
+            pose.c != still_cache.c || pose.s != still_cache.s) {
+          still_cache = pose;
+          std::fill(still_hit.begin(), still_hit.end(), -1);
+        }
+      }
       std::vector<int>& next = live[k + 1];
       next.clear();
       for (const int j : live[k]) {
@@ -463,9 +508,11 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
         const double sx = nc.cx - tc.cx, sy = nc.cy - tc.cy;
         const double sr = nc.r + tc.r + reach;
         if (sx * sx + sy * sy > sr * sr) continue;
-        // First colliding step (1-based) of the node's path and j within span k.
+        // First colliding step (1-based) of the node's path and j within blocks [q0, q1).
         int hit = 0;
-        if (any_near) {
+        if (still && still_hit[j - t.j0] >= 0) {
+          hit = still_hit[j - t.j0];
+        } else if (any_near) {
           const size_t cj = co_.Offset(j), cb = static_cast<size_t>(j) * blocks;
           const internal::BoxTrack co_track{&co_.x[cj],   &co_.y[cj],     &co_cos_[cj],
                                             &co_sin_[cj], co.half_length, co.half_width};
@@ -495,16 +542,17 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
             }
           }
         }
+        if (still) still_hit[j - t.j0] = hit;
         if (hit > 0) {
           for (int p = 0; p < width; ++p) {
             (*first_step)[static_cast<size_t>(first + p) * n_co + j] =
                 static_cast<std::int16_t>(hit);
           }
-        } else {
+        } else if (!still) {
           next.push_back(j);
         }
       }
-      if (next.empty() || k + 1 >= K) return;
+      if (still || next.empty() || k + 1 >= K) return;
       for (int c = 0; c < L; ++c) self(self, k + 1, group * L + c);
     };
     for (int g = 0; g < L; ++g) walk(walk, 0, g);

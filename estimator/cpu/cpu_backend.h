@@ -30,12 +30,17 @@
 //    and the subtree is neither simulated nor checked. The pair
 //    matrix is the same (its entries there are 0 either way); EgoTrajectories() then holds NaN
 //    for the paths of skipped subtrees (ReferenceBackend has every pose).
+//  - Still subtrees (every path below a node holds the node's first pose, bit for bit, to the
+//    horizon: an ego waiting at a standstill under a braking profile) are checked once along the
+//    node's first path from its span to the horizon, for all the paths below, and siblings that
+//    hold the same pose reuse those first hits: the same tests on the same poses.
 //  - cos/sin of every pose computed once; threads over each level's packs of nodes and over the
 //    collision tasks.
 //  - With simd (the default), the nodes of one profile and level, and another vehicle's paths
 //    of one profile, are simulated together in SIMD lanes (cpu/sibling_steps.h), with cos/sin
 //    from vector math: the pair matrix then equals the reference's except for grazing
 //    contacts.
+#include <algorithm>
 #include <vector>
 
 #include "core/hypothesis_set.h"
@@ -59,6 +64,10 @@ class CpuBackend final : public EstimatorBackend {
    *  and the nodes whose reach it tested (below the first level, children of nodes that were
    *  simulated; 0 with skip_out_of_reach off). */
   int SkippedNodes() const { return skipped_nodes_; }
+  /** Tree nodes the last GenerateTrajectories found still (every path below holds one pose). */
+  int StillNodes() const {
+    return static_cast<int>(std::count(node_still_.begin(), node_still_.end(), char{1}));
+  }
   int CheckedNodes() const { return checked_nodes_; }
 
   /** Steps per collision block (bounding circles). */
@@ -111,6 +120,9 @@ class CpuBackend final : public EstimatorBackend {
   // follow those of instant k-1, k's group g at node_offset_[k] + g); co_tail_ per (CO
   // trajectory, instant k) over steps [boundary_[k], n_steps).
   BlockBounds node_bounds_, co_tail_;
+  // Per (profile, tree node): 1 when every path below it holds one pose from its span to the
+  // horizon (a standstill: cpu/sibling_steps.cc), bit for bit, checked on the poses.
+  std::vector<char> node_still_;
   // Per (profile, tree node): the box around its span's poses (FinishSpan's, for the sweep).
   std::vector<Box> node_span_box_;
   // object_tail_ per (collision object set, instant k): around its trajectories' co_tail_.

@@ -243,6 +243,43 @@ Derivative<V> OneTrack(D d, const core::VehicleParams& p, V v, V beta, V yr, V s
   return out;
 }
 
+// Step n's poses of lanes [first, first + count) into the span (c, s unless bc is null).
+void StorePoses(SiblingSpan* span, int first, int count, int n, const double* bx, const double* by,
+                const double* byaw, const double* bc, const double* bs) {
+  for (int l = 0; l < count; ++l) {
+    span->x[first + l][n] = bx[l];
+    span->y[first + l][n] = by[l];
+    span->yaw[first + l][n] = byaw[l];
+    if (bc) {
+      span->c[first + l][n] = bc[l];
+      span->s[first + l][n] = bs[l];
+    }
+  }
+}
+
+// A standstill for good, exactly (issue 23: about half of a city fleet's egos wait at a light
+// or in a queue, and most of their profiles brake). A lane whose state after a step has speed,
+// acceleration and yaw rate all 0, below the seam speed (the kinematic model), and whose demand
+// stays <= 0 to the horizon (its ramp between the value now and a target <= 0) goes on storing
+// the same pose: each later step adds a speed times tau and accelerations times tau^2 / 2 that
+// are all (signed) 0, turns the yaw by 0 (so the heading's cos/sin by angle addition stay, and
+// the sagitta of a body on its path is 0), NonReversingAccel keeps v at 0, and the shift along
+// the course (v - v0) * position_lead is 0 when v0 = 0 or there is none. Only the steering
+// angle and the kinematic sideslip would move, and they move no pose while v stays 0; the
+// lanes' end states keep the values of the step where the standstill began (the children of a
+// tree node start from them, and stand as well: their profile is the same).
+bool StandstillMayHold(const core::HypothesisSet& h) {
+  return h.seam_speed > 0.0 && h.rate >= 0.0 && (h.position_lead <= 0.0 || h.v0 == 0.0);
+}
+
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE bool StandsStill(D d, V v, V ax, V ay, V yaw_rate, double seam_speed) {
+  const V zero = hn::Zero(d);
+  const auto still = hn::And(hn::And(hn::Eq(v, zero), hn::Eq(ax, zero)),
+                             hn::And(hn::Eq(ay, zero), hn::Eq(yaw_rate, zero)));
+  return seam_speed > 0.0 && hn::AllTrue(d, still);
+}
+
 // Lanes [first, first + count) of the span, count <= Lanes(d); the vector's other lanes repeat
 // lane `first` and are never written back.
 template <class D>
@@ -284,10 +321,19 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
     hn::StoreU(hn::Sin(d, yaw0), d, L.syaw);
   }
   const bool heading_trig = span->c[first] != nullptr;
+  // The last stored pose of each lane, in the scene frame (kept for a standstill, below).
+  double bx[kBuf], by[kBuf], byaw[kBuf], bc[kBuf], bs[kBuf];
+  // At a standstill for good (StandsStill): every later step stores the same pose.
+  bool standing = false;
+  const bool can_stand = StandstillMayHold(h);
   int section_key = -2;  // (latent, instant) the section lanes were filled for
   for (int n = span->n_begin; n < span->n_end; ++n) {
     const double t = n * tau;
     instant = core::InstantAt(h, instant, t);
+    if (standing) {
+      StorePoses(span, first, count, n, bx, by, byaw, heading_trig ? bc : nullptr, bs);
+      continue;
+    }
     const bool latent = t < h.steer_latency;
     const int key = latent ? -1 : instant;
     if (key != section_key) {
@@ -362,10 +408,12 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       const size_t distinct = uniform ? 1 : N;
       double demand[kBuf];
       bool drives = false;
+      bool brakes_for_good = true;  // every lane's demand <= 0 from now to the horizon
       for (size_t l = 0; l < distinct; ++l) {
         const double a = core::RampedValue(t, h.profile_start, target[l], h.latency, h.rate);
         demand[l] = two_track && !h.force_profiles ? core::SlipFactor(&lane_ctx[l], a) : a;
         drives = drives || demand[l] > 0.0;
+        brakes_for_good = brakes_for_good && a <= 0.0 && target[l] <= 0.0;
       }
       V lon_demand = uniform ? hn::Set(d, demand[0]) : hn::LoadU(d, demand);
       if (h.power_limited && drives) {
@@ -491,23 +539,14 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       hn::StoreU(ncy, d, L.cyaw);
       hn::StoreU(nsy, d, L.syaw);
       if (heading_trig) {
-        double bc[kBuf], bs[kBuf];
         hn::StoreU(hn::Sub(hn::Mul(c0, ncy), hn::Mul(s0, nsy)), d, bc);
         hn::StoreU(hn::Add(hn::Mul(s0, ncy), hn::Mul(c0, nsy)), d, bs);
-        for (int l = 0; l < count; ++l) {
-          span->c[first + l][n] = bc[l];
-          span->s[first + l][n] = bs[l];
-        }
       }
-      double bx[kBuf], by[kBuf], byaw[kBuf];
       hn::StoreU(wx, d, bx);
       hn::StoreU(wy, d, by);
       hn::StoreU(wyaw, d, byaw);
-      for (int l = 0; l < count; ++l) {
-        span->x[first + l][n] = bx[l];
-        span->y[first + l][n] = by[l];
-        span->yaw[first + l][n] = byaw[l];
-      }
+      StorePoses(span, first, count, n, bx, by, byaw, heading_trig ? bc : nullptr, bs);
+      standing = can_stand && brakes_for_good && StandsStill(d, nv, nax, nay, nyr, h.seam_speed);
     }
   }
   for (int l = 0; l < count; ++l) {
