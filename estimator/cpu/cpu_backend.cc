@@ -254,8 +254,17 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
         }
       }
     }
-    for (size_t a = 0; a < active.size(); a += kPack) {
-      packs.emplace_back(active.begin() + a, active.begin() + std::min(active.size(), a + kPack));
+    // A pack never mixes profiles that drive (target > 0) with those that do not: a vector of
+    // lanes that all come to a standstill stops stepping (cpu/sibling_steps.cc), one with a
+    // driving lane in it steps to the end.
+    auto drives = [&](int profile) { return ego.profile_target[profile] > 0.0; };
+    for (size_t a = 0; a < active.size();) {
+      size_t b = a + 1;
+      while (b < active.size() && b - a < static_cast<size_t>(kPack) &&
+             drives(active[b].first) == drives(active[a].first))
+        ++b;
+      packs.emplace_back(active.begin() + a, active.begin() + b);
+      a = b;
     }
     internal::ParallelFor(static_cast<int>(packs.size()), threads_, [&](int begin, int end) {
       for (int task = begin; task < end; ++task) {

@@ -5,6 +5,7 @@
 // with -ffp-contract=off: no multiply-add is fused that the scalar code does not fuse.
 #include "cpu/sibling_steps.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -244,8 +245,9 @@ Derivative<V> OneTrack(D d, const core::VehicleParams& p, V v, V beta, V yr, V s
 }
 
 // Step n's poses of lanes [first, first + count) into the span (c, s unless bc is null).
-void StorePoses(SiblingSpan* span, int first, int count, int n, const double* bx, const double* by,
-                const double* byaw, const double* bc, const double* bs) {
+HWY_INLINE void StorePoses(SiblingSpan* span, int first, int count, int n, const double* bx,
+                           const double* by, const double* byaw, const double* bc,
+                           const double* bs) {
   for (int l = 0; l < count; ++l) {
     span->x[first + l][n] = bx[l];
     span->y[first + l][n] = by[l];
@@ -253,6 +255,22 @@ void StorePoses(SiblingSpan* span, int first, int count, int n, const double* bx
     if (bc) {
       span->c[first + l][n] = bc[l];
       span->s[first + l][n] = bs[l];
+    }
+  }
+}
+
+// Steps [n, n_end) of lanes [first, first + count) hold the pose of step n - 1 (c, s unless bc
+// is null).
+void HoldPoses(SiblingSpan* span, int first, int count, int n, const double* bx, const double* by,
+               const double* byaw, const double* bc, const double* bs) {
+  const int n_end = span->n_end;
+  for (int l = 0; l < count; ++l) {
+    std::fill(span->x[first + l] + n, span->x[first + l] + n_end, bx[l]);
+    std::fill(span->y[first + l] + n, span->y[first + l] + n_end, by[l]);
+    std::fill(span->yaw[first + l] + n, span->yaw[first + l] + n_end, byaw[l]);
+    if (bc) {
+      std::fill(span->c[first + l] + n, span->c[first + l] + n_end, bc[l]);
+      std::fill(span->s[first + l] + n, span->s[first + l] + n_end, bs[l]);
     }
   }
 }
@@ -323,17 +341,12 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
   const bool heading_trig = span->c[first] != nullptr;
   // The last stored pose of each lane, in the scene frame (kept for a standstill, below).
   double bx[kBuf], by[kBuf], byaw[kBuf], bc[kBuf], bs[kBuf];
-  // At a standstill for good (StandsStill): every later step stores the same pose.
-  bool standing = false;
+  // At a standstill for good (StandsStill), every later step stores the same pose.
   const bool can_stand = StandstillMayHold(h);
   int section_key = -2;  // (latent, instant) the section lanes were filled for
   for (int n = span->n_begin; n < span->n_end; ++n) {
     const double t = n * tau;
     instant = core::InstantAt(h, instant, t);
-    if (standing) {
-      StorePoses(span, first, count, n, bx, by, byaw, heading_trig ? bc : nullptr, bs);
-      continue;
-    }
     const bool latent = t < h.steer_latency;
     const int key = latent ? -1 : instant;
     if (key != section_key) {
@@ -546,7 +559,12 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       hn::StoreU(wy, d, by);
       hn::StoreU(wyaw, d, byaw);
       StorePoses(span, first, count, n, bx, by, byaw, heading_trig ? bc : nullptr, bs);
-      standing = can_stand && brakes_for_good && StandsStill(d, nv, nax, nay, nyr, h.seam_speed);
+      if (can_stand && brakes_for_good && StandsStill(d, nv, nax, nay, nyr, h.seam_speed)) {
+        // The rest of the span holds this pose; the instants still advance as step by step.
+        for (int m = n + 1; m < span->n_end; ++m) instant = core::InstantAt(h, instant, m * tau);
+        HoldPoses(span, first, count, n + 1, bx, by, byaw, heading_trig ? bc : nullptr, bs);
+        break;
+      }
     }
   }
   for (int l = 0; l < count; ++l) {

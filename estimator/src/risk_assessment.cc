@@ -33,9 +33,24 @@ void AssessRisk(const Problem& pb, const Params& params, const std::int16_t* fir
     std::vector<int> histogram(steps + 1), events(n_co);
     std::vector<double> contribution(n_co), hit_mass(n_obj), by_step(steps), by_object(n_obj);
     std::vector<Share>& out = shares[begin];
+    // The last row with a hit, and where its shares begin in `out`: a row equal to it (the
+    // paths of a still subtree, cpu/cpu_backend.h, share every entry) has the same split.
+    int last = -1;
+    size_t last_out = 0;
     for (int i = begin; i < end; ++i) {
       const std::int16_t* row = first_step + static_cast<size_t>(i) * n_co;
       if (std::all_of(row, row + n_co, [](std::int16_t s) { return s == 0; })) continue;
+      if (last >= 0 && std::equal(row, row + n_co, first_step + static_cast<size_t>(last) * n_co)) {
+        ego_col[i] = ego_col[last];
+        ego_hit[i] = ego_hit[last];
+        const size_t from = last_out, to = out.size();
+        last_out = to;
+        for (size_t k = from; k < to; ++k) out.push_back(Share{i, out[k].index, out[k].value});
+        last = i;
+        continue;
+      }
+      last = i;
+      last_out = out.size();
       int n_events = 0;
       ego_col[i] = core::SplitEgoRisk(row, n_co, steps, n_obj, pb.co_probability.data(),
                                       pb.co_object_of.data(), histogram.data(), events.data(),

@@ -13,10 +13,12 @@
 #include <vector>
 
 #include "bench/paper_scenes.h"
+#include "core/chronological_risk.h"
 #include "cpu/cpu_backend.h"
 #include "cpu/reference_backend.h"
 #include "cpu/sibling_steps.h"
 #include "src/problem.h"
+#include "src/risk_assessment.h"
 
 namespace criticality {
 namespace {
@@ -155,6 +157,52 @@ TEST(Standstill, OnlyPathsThatComeToRestAreStill) {
       EXPECT_EQ(still, 0);
     }
   }
+}
+
+// The risk stage splits a row equal to the row before it (the paths of a still subtree) as
+// that row: every row's collision probability, the first-collision pmf and the objects'
+// contributions must be what core::SplitEgoRisk gives row by row, summed in row order.
+TEST(Standstill, EqualRowsOfThePairMatrixGetEachRowsSplit) {
+  const Problem pb = BuildProblem(WaitingInAQueue(0.0), Params{});
+  CpuBackend cpu(1, true);
+  cpu.GenerateTrajectories(pb);
+  std::vector<std::int16_t> m;
+  cpu.RecognizeCollisions(pb, &m);
+  const int n_ego = pb.EgoTrajectories(), n_co = pb.CoTrajectories(), steps = pb.Steps();
+  const int n_obj = static_cast<int>(pb.cos.size());
+  Result r;
+  Params params;
+  params.max_escape_routes = 0;
+  internal::AssessRisk(pb, params, m.data(), 1, &r);
+  std::vector<int> histogram(steps + 1), events(n_co);
+  std::vector<double> contribution(n_co), hit_mass(n_obj), by_step(steps), by_object(n_obj);
+  std::vector<double> pmf(steps, 0.0), share(n_obj, 0.0);
+  double p = 0.0;
+  int equal_to_the_last = 0;
+  for (int i = 0; i < n_ego; ++i) {
+    const std::int16_t* row = &m[static_cast<size_t>(i) * n_co];
+    int n_events = 0;
+    const double col = core::SplitEgoRisk(row, n_co, steps, n_obj, pb.co_probability.data(),
+                                          pb.co_object_of.data(), histogram.data(), events.data(),
+                                          contribution.data(), hit_mass.data(), by_step.data(),
+                                          by_object.data(), &n_events);
+    if (n_events == 0) continue;
+    ASSERT_EQ(r.ego_collision_probability[i], col) << "row " << i;
+    const double w = pb.ego_probability[i];
+    p += w * col;
+    for (int n = 0; n < steps; ++n) {
+      if (by_step[n] != 0.0) pmf[n] += w * by_step[n];
+    }
+    for (int o = 0; o < n_obj; ++o) {
+      if (by_object[o] != 0.0) share[o] += w * by_object[o];
+    }
+    equal_to_the_last += i > 0 && std::equal(row, row + n_co, row - n_co);
+  }
+  EXPECT_GT(equal_to_the_last, 1000);  // the still subtrees' rows
+  EXPECT_GT(p, 0.0);
+  EXPECT_EQ(r.p_collision, p);
+  EXPECT_EQ(r.first_collision_pmf, pmf);
+  for (int o = 0; o < n_obj; ++o) EXPECT_EQ(r.objects[o].contribution, share[o]) << o;
 }
 
 }  // namespace
