@@ -290,12 +290,14 @@ bool StandstillMayHold(const core::HypothesisSet& h) {
   return h.seam_speed > 0.0 && h.rate >= 0.0 && (h.position_lead <= 0.0 || h.v0 == 0.0);
 }
 
+// Whether every lane's state after a step is at rest (the rest of the rule: StandstillMayHold
+// and the demand, checked by the caller).
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE bool StandsStill(D d, V v, V ax, V ay, V yaw_rate, double seam_speed) {
+HWY_INLINE bool StandsStill(D d, V v, V ax, V ay, V yaw_rate) {
   const V zero = hn::Zero(d);
   const auto still = hn::And(hn::And(hn::Eq(v, zero), hn::Eq(ax, zero)),
                              hn::And(hn::Eq(ay, zero), hn::Eq(yaw_rate, zero)));
-  return seam_speed > 0.0 && hn::AllTrue(d, still);
+  return hn::AllTrue(d, still);
 }
 
 // Lanes [first, first + count) of the span, count <= Lanes(d); the vector's other lanes repeat
@@ -341,7 +343,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
   const bool heading_trig = span->c[first] != nullptr;
   // The last stored pose of each lane, in the scene frame (kept for a standstill, below).
   double bx[kBuf], by[kBuf], byaw[kBuf], bc[kBuf], bs[kBuf];
-  // At a standstill for good (StandsStill), every later step stores the same pose.
+  // Whether a standstill for good can hold for this set (then the rest of a span holds a pose).
   const bool can_stand = StandstillMayHold(h);
   int section_key = -2;  // (latent, instant) the section lanes were filled for
   for (int n = span->n_begin; n < span->n_end; ++n) {
@@ -559,7 +561,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       hn::StoreU(wy, d, by);
       hn::StoreU(wyaw, d, byaw);
       StorePoses(span, first, count, n, bx, by, byaw, heading_trig ? bc : nullptr, bs);
-      if (can_stand && brakes_for_good && StandsStill(d, nv, nax, nay, nyr, h.seam_speed)) {
+      if (can_stand && brakes_for_good && StandsStill(d, nv, nax, nay, nyr)) {
         // The rest of the span holds this pose; the instants still advance as step by step.
         for (int m = n + 1; m < span->n_end; ++m) instant = core::InstantAt(h, instant, m * tau);
         HoldPoses(span, first, count, n + 1, bx, by, byaw, heading_trig ? bc : nullptr, bs);
