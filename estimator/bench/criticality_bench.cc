@@ -29,6 +29,7 @@ namespace {
 struct Options {
   std::string scene{"S1"};
   std::string scene_file;
+  std::string fleet;
   std::string backend{"cpu"};
   int profiles{6};
   int threads{0};
@@ -282,6 +283,100 @@ int Batch(const Scene& scene, const Params& params, const Options& opt) {
   return 0;
 }
 
+// --fleet DIR: every scene file in DIR (one recorded SUMO step of a whole fleet, each ego's
+// scene) estimated in one EstimateBatch call, on the cpu fast path and, when usable, on cuda in
+// the same process: the time per batch, egos per second and how far each backend's p_cra is
+// from the cpu's, scene by scene.
+std::vector<Scene> ReadFleet(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw InputError("--fleet '" + dir + "': not a folder (give a folder of .scene files, e.g. "
+                     "one step written by sumo-criticality --record-scenes)");
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() == ".scene") files.push_back(entry.path().string());
+  }
+  if (files.empty()) throw InputError("--fleet '" + dir + "': holds no .scene file");
+  std::sort(files.begin(), files.end());
+  std::vector<Scene> scenes;
+  scenes.reserve(files.size());
+  for (const std::string& f : files) scenes.push_back(ReadSceneFile(f));
+  return scenes;
+}
+
+int Fleet(const Params& params, const Options& opt) {
+  const std::vector<Scene> scenes = ReadFleet(opt.fleet);
+  std::vector<std::string> names{"cpu"};
+  if (CudaUsable(nullptr)) names.push_back("cuda");
+  std::printf("fleet %s: %zu egos in one batch, %d profiles\n", opt.fleet.c_str(), scenes.size(),
+              opt.profiles);
+  std::printf("%-6s %7s %12s %12s %12s %14s  %s\n", "backend", "threads", "median ms", "min ms",
+              "egos/s", "x cpu", "agreement with cpu");
+  std::vector<Result> cpu_results;
+  double cpu_median = 0.0;
+  std::string json = "{\"fleet\":\"" + JsonEscape(opt.fleet) + "\",\"egos\":" +
+                     std::to_string(scenes.size()) + ",\"backends\":[";
+  for (size_t k = 0; k < names.size(); ++k) {
+    EstimatorOptions eopt;
+    eopt.backend = ParseBackend(names[k]);
+    eopt.threads = opt.threads;
+    eopt.simd = !opt.no_simd;
+    eopt.skip_out_of_reach = !opt.no_skip;
+    Estimator estimator(params, eopt);
+    for (int w = 0; w < opt.warmup; ++w) estimator.EstimateBatch(scenes);
+    std::vector<double> ms;
+    std::vector<Result> results;
+    for (int r = 0; r < opt.repeat; ++r) {
+      const auto t0 = std::chrono::steady_clock::now();
+      results = estimator.EstimateBatch(scenes);
+      ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    const double median = Median(ms);
+    const double min = *std::min_element(ms.begin(), ms.end());
+    if (k == 0) {
+      cpu_results = results;
+      cpu_median = median;
+    }
+    double max_dp = 0.0, p_sum = 0.0;
+    size_t beyond = 0;  // scenes whose p_cra differs from the cpu's by more than 1e-6
+    for (size_t q = 0; q < results.size(); ++q) {
+      const double dp = std::fabs(results[q].p_collision - cpu_results[q].p_collision);
+      max_dp = std::max(max_dp, dp);
+      beyond += dp > 1e-6;
+      p_sum += results[q].p_collision;
+    }
+    const double egos_per_s = scenes.size() / (median * 1e-3);
+    char agree[160];
+    std::snprintf(agree, sizeof agree, "max |dp_cra| = %.1e, %zu of %zu scenes beyond 1e-6",
+                  max_dp, beyond, results.size());
+    std::printf("%-6s %7d %12.3f %12.3f %12.1f %14.2f  %s\n", names[k].c_str(),
+                estimator.threads(), median, min, egos_per_s, cpu_median / median, agree);
+    double street = 0.0, traj = 0.0, coll = 0.0, risk = 0.0;  // the last batch's, over its egos
+    for (const Result& r : results) {
+      street += r.times.street_ms;
+      traj += r.times.trajectory_ms;
+      coll += r.times.collision_ms;
+      risk += r.times.risk_ms;
+    }
+    std::printf("       stages of the last batch, summed over egos: street data %.3f, trajectories "
+                "%.3f, collisions %.3f, risk %.3f ms\n",
+                street, traj, coll, risk);
+    char item[400];
+    std::snprintf(item, sizeof item,
+                  "%s{\"backend\":\"%s\",\"threads\":%d,\"median_ms\":%.6f,\"min_ms\":%.6f,"
+                  "\"egos_per_s\":%.3f,\"speedup_vs_cpu\":%.3f,\"max_dp_vs_cpu\":%.3g,"
+                  "\"scenes_beyond_1e-6\":%zu,\"mean_p_collision\":%.17g}",
+                  k ? "," : "", names[k].c_str(), estimator.threads(), median, min, egos_per_s,
+                  cpu_median / median, max_dp, beyond, p_sum / results.size());
+    json += item;
+  }
+  json += "]}";
+  if (opt.json) std::printf("%s\n", json.c_str());
+  return 0;
+}
+
 // Every backend on the same scene, one after the other in this process.
 int Compare(const Scene& scene, const Params& params, const Options& opt) {
   // The cpu fast path twice: scalar (bit for bit the reference's pair matrix) and with SIMD.
@@ -435,6 +530,10 @@ int main(int argc, char** argv) {
       "scene", po::value(&opt.scene)->default_value(opt.scene), "S1 or S2")(
       "scene-file", po::value(&opt.scene_file),
       "replay a scene file instead (written by sumo-criticality --record-scenes)")(
+      "fleet", po::value(&opt.fleet),
+      "estimate every .scene file in this folder as one batch (a recorded fleet step, e.g. "
+      "bench/fleet_step), on cpu and, when usable, cuda in this process: ms per batch, egos/s, "
+      "|dp_cra| against cpu")(
       "profiles", po::value(&opt.profiles)->default_value(opt.profiles),
       "acceleration/slip profiles per object (paper: 6 or 5)")(
       "backend", po::value(&opt.backend)->default_value(opt.backend),
@@ -494,6 +593,7 @@ int main(int argc, char** argv) {
     Params params = ParamsPreset(opt.preset);
     params.profiles = opt.profiles;
     if (opt.discrimination) return Discrimination(params, opt);
+    if (!opt.fleet.empty()) return Fleet(params, opt);
     EstimatorOptions eopt;
     eopt.backend = ParseBackend(opt.backend);
     eopt.threads = opt.threads;

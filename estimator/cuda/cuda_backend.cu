@@ -14,7 +14,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <string>
 #include <vector>
 
 #include "core/chronological_risk.h"
@@ -24,6 +27,7 @@
 #include "cuda/cuda_backend.h"
 #include "cuda/device.cuh"
 #include "cuda/kernel_bodies.h"
+#include "src/parallel_for.h"
 #include "src/risk_assessment.h"
 
 namespace criticality::cuda {
@@ -115,7 +119,11 @@ double MsSince(std::chrono::steady_clock::time_point t0) {
 
 class CudaBackend final : public EstimatorBackend {
  public:
-  CudaBackend() { Check(cudaSetDevice(0), "cudaSetDevice"); }
+  explicit CudaBackend(int host_threads) : host_threads_(std::max(1, host_threads)) {
+    Check(cudaSetDevice(0), "cudaSetDevice");
+    const char* timing = std::getenv("CRITICALITY_CUDA_TIMING");
+    print_timing_ = timing && *timing && std::string(timing) != "0";
+  }
 
   void GenerateTrajectories(const internal::Problem& pb) override {
     Upload({&pb});
@@ -187,7 +195,9 @@ class CudaBackend final : public EstimatorBackend {
   void RunChunk(const std::vector<const internal::Problem*>& problems, const Params& params,
                 bool keep_pair_matrix, std::vector<Result>* results) {
     auto t = std::chrono::steady_clock::now();
+    const auto t_chunk = t;
     Upload(problems);
+    const double upload_ms = MsSince(t);
     LaunchTrajectories();
     Check(cudaDeviceSynchronize(), "after trajectory kernels");
     const double trajectory_ms = MsSince(t);
@@ -214,6 +224,12 @@ class CudaBackend final : public EstimatorBackend {
     ReduceKernel<<<Blocks(h.TotalOut()), kThreads>>>(layout_, h.TotalOut(), d_p_ego_.get(), ego_col,
                                                      by_step, by_obj, out);
     Check(cudaGetLastError(), "after reduction kernel launch");
+    double risk_kernels_ms = 0.0;
+    if (print_timing_) {
+      Check(cudaDeviceSynchronize(), "after risk kernels");
+      risk_kernels_ms = MsSince(t);
+    }
+    const auto t_download = std::chrono::steady_clock::now();
     std::vector<double> sums, col;
     std::vector<char> hit;
     std::vector<std::int16_t> first;
@@ -221,44 +237,43 @@ class CudaBackend final : public EstimatorBackend {
     d_ego_col_.Download(&col, total_ego, "copy ego collision probabilities");
     d_ego_hit_.Download(&hit, total_ego, "copy ego hits");
     if (keep_pair_matrix) d_first_.Download(&first, pairs, "copy pair matrices");
+    // Problems with carriages need their own slice of the device's pair matrix: copied here,
+    // in order, before the host's threads take the problems.
+    std::vector<std::vector<std::int16_t>> carriage_pairs(problems.size());
     for (size_t p = 0; p < problems.size(); ++p) {
-      const internal::Problem& pb = *problems[p];
-      Result& r = (*results)[p];
-      if (pb.HasCarriages()) {
-        // Long bodies: the device's risk knows every carriage as an object of its own, so
-        // this problem's pair matrix is folded into its vehicles' columns and assessed on the
-        // host, as every other backend does (estimator/ALGORITHM.md, "Long and articulated
-        // bodies").
-        std::vector<std::int16_t> mine;
-        if (keep_pair_matrix) {
-          mine.assign(first.begin() + h.pair_base[p], first.begin() + h.pair_base[p + 1]);
-        } else {
-          d_first_.Download(&mine, static_cast<size_t>(h.pair_base[p]),
-                            static_cast<size_t>(h.pair_base[p + 1] - h.pair_base[p]),
-                            "copy pair matrix of a problem with carriages");
-        }
-        internal::AssessBodies(pb, params, &mine, 1, &r);
-        if (keep_pair_matrix) r.first_collision_step = std::move(mine);
-        continue;
-      }
-      const int steps = h.steps, n_obj = static_cast<int>(pb.cos.size());
-      const double* s = sums.data() + h.out_base[p];
-      r.first_collision_pmf.assign(s, s + steps);
-      r.objects = pb.objects;
-      for (int o = 0; o < n_obj; ++o) r.objects[o].contribution = s[steps + o];
-      r.p_collision = s[steps + n_obj];
-      r.ego_probability = pb.ego_probability;
-      r.ego_collision_probability.assign(col.begin() + h.ego_base[p],
-                                         col.begin() + h.ego_base[p + 1]);
-      internal::FinishDecisionOutputs(
-          pb, params,
-          std::vector<char>(hit.begin() + h.ego_base[p], hit.begin() + h.ego_base[p + 1]), &r);
+      if (!problems[p]->HasCarriages()) continue;
       if (keep_pair_matrix) {
-        r.first_collision_step.assign(first.begin() + h.pair_base[p],
-                                      first.begin() + h.pair_base[p + 1]);
+        carriage_pairs[p].assign(first.begin() + h.pair_base[p], first.begin() + h.pair_base[p + 1]);
+      } else {
+        d_first_.Download(&carriage_pairs[p], static_cast<size_t>(h.pair_base[p]),
+                          static_cast<size_t>(h.pair_base[p + 1] - h.pair_base[p]),
+                          "copy pair matrix of a problem with carriages");
       }
     }
+    const double download_ms = MsSince(t_download);
+    const auto t_host = std::chrono::steady_clock::now();
+    // Each problem's outputs on the host's threads, each into its own result: the same
+    // answers whatever the number of threads.
+    std::vector<std::exception_ptr> errors(problems.size());
+    internal::ParallelForDynamic(static_cast<int>(problems.size()), host_threads_, [&](int p) {
+      try {
+        FinishProblem(*problems[p], p, params, keep_pair_matrix, sums, col, hit, first,
+                      &carriage_pairs[p], &(*results)[p]);
+      } catch (...) {
+        errors[p] = std::current_exception();
+      }
+    });
+    internal::CallersPool().Rest();
+    for (const std::exception_ptr& e : errors)
+      if (e) std::rethrow_exception(e);
     const double risk_ms = MsSince(t);
+    if (print_timing_) {
+      std::fprintf(stderr,
+                   "cuda chunk of %zu problems: upload %.3f, trajectories %.3f, collisions %.3f, "
+                   "risk kernels %.3f, downloads %.3f, host outputs %.3f, total %.3f ms\n",
+                   problems.size(), upload_ms, trajectory_ms - upload_ms, collision_ms,
+                   risk_kernels_ms, download_ms, MsSince(t_host), MsSince(t_chunk));
+    }
     const double n = static_cast<double>(problems.size());
     for (Result& r : *results) {  // a batch shares its time: each result gets the mean
       r.times.trajectory_ms = trajectory_ms / n;
@@ -267,8 +282,45 @@ class CudaBackend final : public EstimatorBackend {
     }
   }
 
+  // Problem p's result from the downloaded sums, ego collision probabilities and hits (the
+  // device's risk), or, for a problem with carriages, from its pair matrix on the host.
+  void FinishProblem(const internal::Problem& pb, size_t p, const Params& params,
+                     bool keep_pair_matrix, const std::vector<double>& sums,
+                     const std::vector<double>& col, const std::vector<char>& hit,
+                     const std::vector<std::int16_t>& first, std::vector<std::int16_t>* mine,
+                     Result* out) const {
+    const BatchHost& h = host_;
+    Result& r = *out;
+    if (pb.HasCarriages()) {
+      // Long bodies: the device's risk knows every carriage as an object of its own, so
+      // this problem's pair matrix is folded into its vehicles' columns and assessed on the
+      // host, as every other backend does (estimator/ALGORITHM.md, "Long and articulated
+      // bodies").
+      internal::AssessBodies(pb, params, mine, 1, &r);
+      if (keep_pair_matrix) r.first_collision_step = std::move(*mine);
+      return;
+    }
+    const int steps = h.steps, n_obj = static_cast<int>(pb.cos.size());
+    const double* s = sums.data() + h.out_base[p];
+    r.first_collision_pmf.assign(s, s + steps);
+    r.objects = pb.objects;
+    for (int o = 0; o < n_obj; ++o) r.objects[o].contribution = s[steps + o];
+    r.p_collision = s[steps + n_obj];
+    r.ego_probability = pb.ego_probability;
+    r.ego_collision_probability.assign(col.begin() + h.ego_base[p],
+                                       col.begin() + h.ego_base[p + 1]);
+    internal::FinishDecisionOutputs(
+        pb, params,
+        std::vector<char>(hit.begin() + h.ego_base[p], hit.begin() + h.ego_base[p + 1]), &r);
+    if (keep_pair_matrix) {
+      r.first_collision_step.assign(first.begin() + h.pair_base[p],
+                                    first.begin() + h.pair_base[p + 1]);
+    }
+  }
+
  public:
-  int Threads() const override { return 1; }
+  /** The host's threads (the device's work is in its launches). */
+  int Threads() const override { return host_threads_; }
   const internal::TrajectoryStore& EgoTrajectories() const override {
     SyncHost();
     return ego_;
@@ -365,6 +417,8 @@ class CudaBackend final : public EstimatorBackend {
     host_stale_ = false;
   }
 
+  int host_threads_{1};
+  bool print_timing_{false};  ///< CRITICALITY_CUDA_TIMING: each chunk's stages on stderr
   BatchHost host_;
   BatchLayout layout_{};
   core::SimulationConfig sim_;
@@ -383,6 +437,8 @@ class CudaBackend final : public EstimatorBackend {
 
 }  // namespace
 
-std::unique_ptr<EstimatorBackend> MakeCudaBackend() { return std::make_unique<CudaBackend>(); }
+std::unique_ptr<EstimatorBackend> MakeCudaBackend(int host_threads) {
+  return std::make_unique<CudaBackend>(host_threads);
+}
 
 }  // namespace criticality::cuda

@@ -7,6 +7,8 @@
 
 namespace criticality::cuda {
 
-std::unique_ptr<EstimatorBackend> MakeCudaBackend();
+/** host_threads: the threads of the host's share of a batch (each problem's outputs after the
+ *  device's risk, and the risk of problems with carriages); >= 1. */
+std::unique_ptr<EstimatorBackend> MakeCudaBackend(int host_threads = 1);
 
 }  // namespace criticality::cuda

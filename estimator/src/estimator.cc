@@ -179,7 +179,7 @@ Estimator::Estimator(const Params& params, const EstimatorOptions& options)
         throw InputError("backend cuda: " + why + "; use --backend cpu or auto");
       }
 #ifdef CRIT_WITH_CUDA
-      backend_ = cuda::MakeCudaBackend();
+      backend_ = cuda::MakeCudaBackend(internal::ResolveThreads(options_.threads));
 #endif
       break;
   }
@@ -224,10 +224,31 @@ std::vector<Result> Estimator::EstimateBatch(const std::vector<Scene>& scenes) {
   std::vector<ReachShortcut> shortcuts(scenes.size());
   built.reserve(scenes.size());
   problems.reserve(scenes.size());
-  for (size_t k = 0; k < scenes.size(); ++k) {
-    built.push_back(internal::BuildProblem(scenes[k], params_));
-    problems.push_back(options_.reach_shortcut ? shortcuts[k].Apply(built.back(), options_.simd)
-                                               : built.back());
+  if (options_.backend == Backend::kCuda && scenes.size() > 1) {
+    // The host's share of a device batch, the problems built on the host's threads, each into
+    // its own slot; a scene that cannot be built is reported as the sequential loop would (the
+    // first in scene order).
+    built.resize(scenes.size());
+    problems.resize(scenes.size());
+    std::vector<std::exception_ptr> errors(scenes.size());
+    internal::ParallelForDynamic(
+        static_cast<int>(scenes.size()), internal::ResolveThreads(options_.threads), [&](int k) {
+          try {
+            built[k] = internal::BuildProblem(scenes[k], params_);
+            problems[k] =
+                options_.reach_shortcut ? shortcuts[k].Apply(built[k], options_.simd) : built[k];
+          } catch (...) {
+            errors[k] = std::current_exception();
+          }
+        });
+    for (const std::exception_ptr& e : errors)
+      if (e) std::rethrow_exception(e);
+  } else {
+    for (size_t k = 0; k < scenes.size(); ++k) {
+      built.push_back(internal::BuildProblem(scenes[k], params_));
+      problems.push_back(options_.reach_shortcut ? shortcuts[k].Apply(built.back(), options_.simd)
+                                                 : built.back());
+    }
   }
   const double street_ms = MsSince(t0);
   std::vector<Result> results(scenes.size());

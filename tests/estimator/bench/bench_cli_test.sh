@@ -37,6 +37,19 @@ dir=$(mktemp -d)
 check "--save-scenes writes replayable scene files" \
   "$bench" --scene-file "$dir/stopped-car-ttc-1.50.scene" --repeat 1 --warmup 0
 rm -rf "$dir"
+# --fleet: every scene file of a folder in one batch; its mean p_cra is the mean of the scenes
+# estimated one by one.
+data=$(cd "$(dirname "$0")/../data" && pwd)
+json=$("$bench" --fleet "$data" --repeat 1 --warmup 0 --json | tail -n 1)
+check "--fleet counts the folder's scene files" grep -q '"egos":3,' <<<"$json"
+check "--fleet has the cpu row" grep -q '"backend":"cpu"' <<<"$json"
+fleet_mean=$(sed 's/.*"backend":"cpu"[^}]*"mean_p_collision":\([^,}]*\).*/\1/' <<<"$json")
+one_by_one=$(for f in "$data"/*.scene; do
+  "$bench" --scene-file "$f" --repeat 1 --warmup 0 --json | tail -n 1 |
+    sed 's/.*"p_collision":\([^,]*\),.*/\1/'
+done | awk '{s += $1} END {printf "%.12e", s / NR}')
+check "--fleet mean p_cra ($fleet_mean) is the scenes' one by one ($one_by_one)" \
+  awk -v a="$fleet_mean" -v b="$one_by_one" 'BEGIN {d = a - b; exit !(d < 1e-12 && d > -1e-12 && b > 0)}'
 report=$("$bench" --scene S1 --repeat 1 --warmup 0 --report)
 check "--report shows p_reference and unavoidability" grep -q "unavoidability" <<<"$report"
 check "--report shows escape routes with their manoeuvre" grep -q "max lateral accel" <<<"$report"
@@ -54,6 +67,10 @@ expect_error 2 "scene = 'S9'" --scene S9
 expect_error 2 "backend = 'gpu'" --backend gpu
 expect_error 2 "repeat" --repeat 0
 expect_error 2 "preset = 'fast'" --preset fast
+expect_error 2 "--fleet '/nonexistent': not a folder" --fleet /nonexistent
+empty=$(mktemp -d)
+expect_error 2 "holds no .scene file" --fleet "$empty"
+rmdir "$empty"
 expect_error 2 "unrecognised option\|unrecognized option" --bogus
 check "--help explains the options" bash -c "'$bench' --help | grep -q -- '--backend'"
 exit $fail

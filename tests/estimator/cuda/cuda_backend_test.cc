@@ -171,6 +171,10 @@ TEST(CudaBackend, ScenesWithCarriagesInABatchMatchTheCpu) {
   EstimatorOptions gpu_opt, cpu_opt;
   gpu_opt.backend = Backend::kCuda;
   gpu_opt.keep_pair_matrix = cpu_opt.keep_pair_matrix = true;
+  // The scalar fast path (bit for bit the reference's pair matrix), not the SIMD one: on these
+  // scenes the SIMD path itself differs from the reference in 49 grazing pairs, more than the
+  // device may.
+  cpu_opt.simd = false;
   Estimator gpu(Params{}, gpu_opt), cpu(Params{}, cpu_opt);
   const std::vector<Result> batch = gpu.EstimateBatch(scenes);
   ASSERT_EQ(batch.size(), scenes.size());
