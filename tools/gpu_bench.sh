@@ -41,7 +41,7 @@ if [ "${1:-}" = "--bundle" ]; then
   done
   for lib in libdl.so.2 libpthread.so.0 librt.so.1; do  # what the driver's libcuda may load
     path=$(ldconfig -p | awk -v l="$lib" '$1 == l && /x86-64/ {print $NF; exit}')
-    [ -n "$path" ] && cp -L "$path" "$out/gpu-libs/glibc/"
+    if [ -n "$path" ]; then cp -L "$path" "$out/gpu-libs/glibc/"; fi
   done
   echo "gpu_bench: bundled into $out ($(du -sh "$out" | cut -f1)); carry $out to the GPU machine" \
        "and run BUILD_DIR=$out tools/gpu_bench.sh there"

@@ -49,11 +49,32 @@ struct BatchHost {
   }
 };
 
-/** Concatenates problems (all with the same number of steps). */
-inline BatchHost MakeBatch(const std::vector<const internal::Problem*>& problems) {
-  BatchHost b;
+/** Concatenates problems (all with the same number of steps) into *out, reusing its vectors'
+ *  memory: a batch of a city's fleet is tens of MB, and fresh pages cost more to touch than
+ *  the copy itself. */
+inline void MakeBatch(const std::vector<const internal::Problem*>& problems, BatchHost* out) {
+  BatchHost& b = *out;
+  for (auto* v : {&b.set_base, &b.co_object_of, &b.co_offset}) v->clear();
+  for (auto* v : {&b.ego_base, &b.co_base, &b.obj_base, &b.out_base}) v->assign(1, 0);
+  for (auto* v : {&b.pair_base, &b.ego_obj_base}) v->assign(1, 0);
+  for (auto* v : {&b.co_half_length, &b.co_half_width, &b.ego_half_length, &b.ego_half_width,
+                  &b.p_co, &b.p_ego})
+    v->clear();
+  b.sets.clear();
   b.problems = static_cast<int>(problems.size());
   b.steps = problems.empty() ? 0 : problems.front()->Steps();
+  size_t sets = 0, ego = 0, co = 0;
+  for (const internal::Problem* pb : problems) {
+    sets += 1 + pb->cos.size();
+    ego += pb->EgoTrajectories();
+    co += pb->CoTrajectories();
+  }
+  b.sets.reserve(sets);
+  b.p_ego.reserve(ego);
+  b.p_co.reserve(co);
+  b.co_object_of.reserve(co);
+  b.co_half_length.reserve(co);
+  b.co_half_width.reserve(co);
   for (const internal::Problem* pb : problems) {
     const int n_ego = pb->EgoTrajectories(), n_co = pb->CoTrajectories();
     const int n_obj = static_cast<int>(pb->cos.size());
@@ -77,6 +98,11 @@ inline BatchHost MakeBatch(const std::vector<const internal::Problem*>& problems
     b.p_co.insert(b.p_co.end(), pb->co_probability.begin(), pb->co_probability.end());
     b.p_ego.insert(b.p_ego.end(), pb->ego_probability.begin(), pb->ego_probability.end());
   }
+}
+
+inline BatchHost MakeBatch(const std::vector<const internal::Problem*>& problems) {
+  BatchHost b;
+  MakeBatch(problems, &b);
   return b;
 }
 
@@ -84,7 +110,8 @@ inline BatchHost MakeBatch(const std::vector<const internal::Problem*>& problems
  *  sets and batch offsets; per ego and CO trajectory and step the poses (x, y, yaw, cos, sin);
  *  per ego x CO trajectory pair the first colliding step (int16), the risk's event slot (int)
  *  and contribution (double): 14 bytes a pair; per ego trajectory its probability, histogram
- *  (steps + 1 ints), sums by step, collision probability and hit flag; per ego trajectory x
+ *  (steps + 1 ints), sums by step, collision probability, hit flag and mark; the bounds of
+ *  every trajectory per block of steps (4 doubles); per ego trajectory x
  *  object the hit mass and sums by object; per CO trajectory its index, box and probability;
  *  its outputs. A batch takes the sum over its problems. */
 inline std::uint64_t DeviceBytes(const internal::Problem& pb) {
@@ -96,6 +123,8 @@ inline std::uint64_t DeviceBytes(const internal::Problem& pb) {
   std::uint64_t b = (1 + obj) * sizeof(core::HypothesisSet);   // sets
   b += 7 * sizeof(int) + 2 * sizeof(long long) + 2 * d;        // offsets, ego box
   b += (ego + co) * steps * 5 * d;                             // poses
+  b += (ego + co) * BoundsBlocks(pb.Steps()) * 4 * d;          // their bounds per block
+  b += ego;                                                    // hit marks
   b += ego * co * (sizeof(std::int16_t) + sizeof(int) + d);    // pair matrix, risk scratch
   b += ego * (d + (steps + 1) * sizeof(int) + steps * d + d + 1);
   b += ego * obj * 2 * d;                                      // hit mass, sums by object

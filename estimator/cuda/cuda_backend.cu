@@ -94,17 +94,25 @@ __global__ void TrigKernel(const double* yaw, size_t n, double* c, double* s) {
   if (k < n) TrigBody(k, yaw, c, s);
 }
 
+__global__ void BoundsKernel(int total, int steps, const double* x, const double* y,
+                             double* bounds) {
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t < total) BoundsBody(t, total, steps, x, y, bounds);
+}
+
 __global__ void CollisionKernel(BatchLayout b, long long pairs, Poses ego, Poses co,
-                                std::int16_t* first) {
+                                const double* ego_bounds, const double* co_bounds,
+                                std::int16_t* first, char* ego_hits) {
   const long long k = blockIdx.x * static_cast<long long>(blockDim.x) + threadIdx.x;
-  if (k < pairs) CollisionBody(k, b, ego, co, first);
+  if (k < pairs) CollisionBody(k, b, ego, co, ego_bounds, co_bounds, first, ego_hits);
 }
 
 __global__ void RiskKernel(BatchLayout b, const std::int16_t* first, const double* p_co,
-                           RiskScratch w, double* ego_col, char* ego_hit, double* by_step,
-                           double* by_object) {
+                           const char* ego_hits, RiskScratch w, double* ego_col, char* ego_hit,
+                           double* by_step, double* by_object) {
   const int g = blockIdx.x * blockDim.x + threadIdx.x;
-  if (g < b.total_ego) RiskBody(g, b, first, p_co, w, ego_col, ego_hit, by_step, by_object);
+  if (g < b.total_ego)
+    RiskBody(g, b, first, p_co, ego_hits, w, ego_col, ego_hit, by_step, by_object);
 }
 
 __global__ void ReduceKernel(BatchLayout b, int outputs, const double* p_ego, const double* ego_col,
@@ -179,7 +187,7 @@ class CudaBackend final : public EstimatorBackend {
   }
 
   size_t Reserved() const {
-    size_t n = d_sets_.bytes() + d_first_.bytes() + d_ego_hit_.bytes();
+    size_t n = d_sets_.bytes() + d_first_.bytes() + d_ego_hit_.bytes() + d_ego_hits_.bytes();
     for (const auto* a : {&d_set_base_, &d_ego_base_, &d_co_base_, &d_obj_base_, &d_out_base_,
                           &d_object_of_, &d_co_offset_, &d_hist_, &d_events_})
       n += a->bytes();
@@ -187,7 +195,7 @@ class CudaBackend final : public EstimatorBackend {
     for (const auto* a : {&d_co_hl_, &d_co_hw_, &d_ego_hl_, &d_ego_hw_, &d_p_co_, &d_p_ego_, &d_ex_,
                           &d_ey_, &d_eyaw_, &d_ec_, &d_es_, &d_cx_, &d_cy_, &d_cyaw_, &d_cc_,
                           &d_cs_, &d_contrib_, &d_mass_, &d_ego_col_, &d_by_step_, &d_by_obj_,
-                          &d_out_})
+                          &d_out_, &d_ego_bounds_, &d_co_bounds_})
       n += a->bytes();
     return n;
   }
@@ -218,8 +226,9 @@ class CudaBackend final : public EstimatorBackend {
     double* by_step = d_by_step_.Reserve(total_ego * h.steps, "cudaMalloc by step");
     double* by_obj = d_by_obj_.Reserve(ego_obj, "cudaMalloc by object");
     double* out = d_out_.Reserve(h.TotalOut(), "cudaMalloc risk output");
-    RiskKernel<<<Blocks(total_ego), kThreads>>>(layout_, d_first_.get(), d_p_co_.get(), w, ego_col,
-                                                ego_hit, by_step, by_obj);
+    RiskKernel<<<Blocks(total_ego), kThreads>>>(layout_, d_first_.get(), d_p_co_.get(),
+                                                d_ego_hits_.get(), w, ego_col, ego_hit, by_step,
+                                                by_obj);
     Check(cudaGetLastError(), "after risk kernel launch");
     ReduceKernel<<<Blocks(h.TotalOut()), kThreads>>>(layout_, h.TotalOut(), d_p_ego_.get(), ego_col,
                                                      by_step, by_obj, out);
@@ -230,9 +239,11 @@ class CudaBackend final : public EstimatorBackend {
       risk_kernels_ms = MsSince(t);
     }
     const auto t_download = std::chrono::steady_clock::now();
-    std::vector<double> sums, col;
-    std::vector<char> hit;
-    std::vector<std::int16_t> first;
+    std::vector<double>& sums = sums_;  // members: their memory is reused call after call
+    std::vector<double>& col = col_;
+    std::vector<char>& hit = hit_;
+    std::vector<std::int16_t>& first = first_;
+    if (!keep_pair_matrix) first.clear();
     d_out_.Download(&sums, h.TotalOut(), "after risk kernels (copy sums)");
     d_ego_col_.Download(&col, total_ego, "copy ego collision probabilities");
     d_ego_hit_.Download(&hit, total_ego, "copy ego hits");
@@ -269,9 +280,10 @@ class CudaBackend final : public EstimatorBackend {
     const double risk_ms = MsSince(t);
     if (print_timing_) {
       std::fprintf(stderr,
-                   "cuda chunk of %zu problems: upload %.3f, trajectories %.3f, collisions %.3f, "
-                   "risk kernels %.3f, downloads %.3f, host outputs %.3f, total %.3f ms\n",
-                   problems.size(), upload_ms, trajectory_ms - upload_ms, collision_ms,
+                   "cuda chunk of %zu problems: upload %.3f (batch on the host %.3f), "
+                   "trajectories %.3f, collisions %.3f, risk kernels %.3f, downloads %.3f, host "
+                   "outputs %.3f, total %.3f ms\n",
+                   problems.size(), upload_ms, batch_ms_, trajectory_ms - upload_ms, collision_ms,
                    risk_kernels_ms, download_ms, MsSince(t_host), MsSince(t_chunk));
     }
     const double n = static_cast<double>(problems.size());
@@ -332,7 +344,9 @@ class CudaBackend final : public EstimatorBackend {
 
  private:
   void Upload(const std::vector<const internal::Problem*>& problems) {
-    host_ = MakeBatch(problems);
+    const auto t0 = std::chrono::steady_clock::now();
+    MakeBatch(problems, &host_);
+    batch_ms_ = MsSince(t0);
     const BatchHost& h = host_;
     d_sets_.Upload(h.sets, "copy hypothesis sets");
     layout_ = BatchLayout{h.problems,
@@ -385,10 +399,22 @@ class CudaBackend final : public EstimatorBackend {
   void LaunchCollisions() {
     const long long pairs = host_.TotalPairs();
     std::int16_t* first = d_first_.Reserve(pairs, "cudaMalloc pair matrix");
+    const int total_ego = host_.TotalEgo(), total_co = host_.TotalCo(), steps = host_.steps;
+    char* ego_hits = d_ego_hits_.Reserve(total_ego, "cudaMalloc ego hit marks");
+    if (total_ego) Check(cudaMemset(ego_hits, 0, total_ego), "clear ego hit marks");
     if (pairs == 0) return;
+    const size_t blocks = static_cast<size_t>(BoundsBlocks(steps)) * 4;
+    double* ego_bounds = d_ego_bounds_.Reserve(blocks * total_ego, "cudaMalloc ego bounds");
+    double* co_bounds = d_co_bounds_.Reserve(blocks * total_co, "cudaMalloc CO bounds");
+    BoundsKernel<<<Blocks(total_ego), kThreads>>>(total_ego, steps, d_ex_.get(), d_ey_.get(),
+                                                  ego_bounds);
+    BoundsKernel<<<Blocks(total_co), kThreads>>>(total_co, steps, d_cx_.get(), d_cy_.get(),
+                                                 co_bounds);
+    Check(cudaGetLastError(), "after bounds kernel launch");
     CollisionKernel<<<Blocks(pairs), kThreads>>>(
         layout_, pairs, Poses{d_ex_.get(), d_ey_.get(), d_ec_.get(), d_es_.get()},
-        Poses{d_cx_.get(), d_cy_.get(), d_cc_.get(), d_cs_.get()}, first);
+        Poses{d_cx_.get(), d_cy_.get(), d_cc_.get(), d_cs_.get()}, ego_bounds, co_bounds, first,
+        ego_hits);
     Check(cudaGetLastError(), "after collision kernel launch");
   }
 
@@ -419,6 +445,10 @@ class CudaBackend final : public EstimatorBackend {
 
   int host_threads_{1};
   bool print_timing_{false};  ///< CRITICALITY_CUDA_TIMING: each chunk's stages on stderr
+  double batch_ms_{0.0};      ///< the last MakeBatch's time
+  std::vector<double> sums_, col_;  ///< downloads of the last chunk
+  std::vector<char> hit_;
+  std::vector<std::int16_t> first_;
   BatchHost host_;
   BatchLayout layout_{};
   core::SimulationConfig sim_;
@@ -432,7 +462,8 @@ class CudaBackend final : public EstimatorBackend {
   DeviceArray<double> d_ex_, d_ey_, d_eyaw_, d_ec_, d_es_, d_cx_, d_cy_, d_cyaw_, d_cc_, d_cs_;
   DeviceArray<std::int16_t> d_first_;
   DeviceArray<double> d_contrib_, d_mass_, d_ego_col_, d_by_step_, d_by_obj_, d_out_;
-  DeviceArray<char> d_ego_hit_;
+  DeviceArray<double> d_ego_bounds_, d_co_bounds_;
+  DeviceArray<char> d_ego_hit_, d_ego_hits_;
 };
 
 }  // namespace

@@ -96,10 +96,62 @@ CRIT_HD void TrigBody(size_t k, const double* yaw, double* c, double* s) {
   s[k] = std::sin(yaw[k]);
 }
 
+/** Steps per block of the trajectories' bounds (BoundsBody). */
+constexpr int kBoundsBlock = 10;
+
+CRIT_HD int BoundsBlocks(int steps) { return (steps + kBoundsBlock - 1) / kBoundsBlock; }
+
+/** Thread t (a trajectory of `total`, step-major poses x[n * total + t]): for each block of
+ *  kBoundsBlock steps, the least and greatest x and y of its centre, stored at
+ *  bounds[(4 * block + {0: min x, 1: max x, 2: min y, 3: max y}) * total + t]. */
+CRIT_HD void BoundsBody(int t, int total, int steps, const double* x, const double* y,
+                        double* bounds) {
+  for (int block = 0; block * kBoundsBlock < steps; ++block) {
+    const int end = block * kBoundsBlock + kBoundsBlock < steps ? block * kBoundsBlock + kBoundsBlock
+                                                                : steps;
+    double x0 = x[static_cast<size_t>(block) * kBoundsBlock * total + t], x1 = x0;
+    double y0 = y[static_cast<size_t>(block) * kBoundsBlock * total + t], y1 = y0;
+    for (int n = block * kBoundsBlock + 1; n < end; ++n) {
+      const double px = x[static_cast<size_t>(n) * total + t];
+      const double py = y[static_cast<size_t>(n) * total + t];
+      x0 = px < x0 ? px : x0;
+      x1 = px > x1 ? px : x1;
+      y0 = py < y0 ? py : y0;
+      y1 = py > y1 ? py : y1;
+    }
+    const size_t at = static_cast<size_t>(4 * block) * total + t;
+    bounds[at] = x0;
+    bounds[at + total] = x1;
+    bounds[at + 2 * static_cast<size_t>(total)] = y0;
+    bounds[at + 3 * static_cast<size_t>(total)] = y1;
+  }
+}
+
+/** Whether the centres of two trajectories stay farther apart than `gap` in x or in y over a
+ *  whole block (their bounds, BoundsBody). Then every step of the block fails the collision
+ *  test's centre-distance check by more than rounding (gap exceeds the reach by a micrometre),
+ *  so skipping the block changes no answer. */
+CRIT_HD bool BlockApart(const double* ego_bounds, int total_ego, int i, const double* co_bounds,
+                        int total_co, int j, int block, double gap) {
+  const size_t a = static_cast<size_t>(4 * block) * total_ego + i;
+  const size_t c = static_cast<size_t>(4 * block) * total_co + j;
+  return co_bounds[c] - ego_bounds[a + total_ego] > gap ||            // CO min x > ego max x
+         ego_bounds[a] - co_bounds[c + total_co] > gap ||             // ego min x > CO max x
+         co_bounds[c + 2 * static_cast<size_t>(total_co)] -
+                 ego_bounds[a + 3 * static_cast<size_t>(total_ego)] >
+             gap ||
+         ego_bounds[a + 2 * static_cast<size_t>(total_ego)] -
+                 co_bounds[c + 3 * static_cast<size_t>(total_co)] >
+             gap;
+}
+
 /** Thread k (a pair of the batch): the first colliding step (1-based, 0 = none) of its ego and
- *  CO trajectory, with a bounding-circle test before the exact one and early exit. */
+ *  CO trajectory, with blocks of steps whose bounds keep the two apart skipped (BlockApart), a
+ *  bounding-circle test before the exact one and early exit. A pair that collides marks its
+ *  ego hypothesis in ego_hits (every writer writes 1; zeroed before the launch). */
 CRIT_HD void CollisionBody(long long k, const BatchLayout& b, const Poses& ego, const Poses& co,
-                           std::int16_t* first) {
+                           const double* ego_bounds, const double* co_bounds,
+                           std::int16_t* first, char* ego_hits) {
   const int p = ProblemOf(b.pair_base, b.problems, k);
   const int n_co = b.co_base[p + 1] - b.co_base[p];
   const long long local = k - b.pair_base[p];
@@ -109,8 +161,14 @@ CRIT_HD void CollisionBody(long long k, const BatchLayout& b, const Poses& ego, 
   const double chl = b.co_half_length[j], chw = b.co_half_width[j];
   const double reach = core::BoundingRadius(ehl, ehw) + core::BoundingRadius(chl, chw) + 1e-9;
   const double reach2 = reach * reach;
+  const double gap = reach + 1e-6;
   std::int16_t hit = 0;
   for (int n = 0; n < b.steps; ++n) {
+    if (n % kBoundsBlock == 0 &&
+        BlockApart(ego_bounds, b.total_ego, i, co_bounds, b.total_co, j, n / kBoundsBlock, gap)) {
+      n += kBoundsBlock - 1;
+      continue;
+    }
     const size_t a = static_cast<size_t>(n) * b.total_ego + i;
     const size_t c = static_cast<size_t>(n) * b.total_co + j;
     const double dx = co.x[c] - ego.x[a], dy = co.y[c] - ego.y[a];
@@ -123,14 +181,22 @@ CRIT_HD void CollisionBody(long long k, const BatchLayout& b, const Poses& ego, 
     }
   }
   first[k] = hit;
+  if (hit) ego_hits[i] = 1;
 }
 
 /** Thread g (an ego hypothesis of the batch): its colliding CO trajectories in chronological
  *  order (counting sort by step, stable in j), the paper's chronological approximation, and
- *  its split over steps and objects (not yet weighted by p_EGO). */
+ *  its split over steps and objects (not yet weighted by p_EGO). A hypothesis that no pair
+ *  marked in ego_hits (CollisionBody) collides with nothing: its collision probability is 0
+ *  and its row is not read (ReduceBody skips it). */
 CRIT_HD void RiskBody(int g, const BatchLayout& b, const std::int16_t* first, const double* p_co,
-                      const RiskScratch& w, double* ego_col, char* ego_hit, double* by_step,
-                      double* by_object) {
+                      const char* ego_hits, const RiskScratch& w, double* ego_col, char* ego_hit,
+                      double* by_step, double* by_object) {
+  if (!ego_hits[g]) {
+    ego_col[g] = 0.0;
+    ego_hit[g] = 0;
+    return;
+  }
   const int p = ProblemOf(b.ego_base, b.problems, g);
   const int i = g - b.ego_base[p];
   const int n_co = b.co_base[p + 1] - b.co_base[p];

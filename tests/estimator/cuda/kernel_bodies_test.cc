@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <random>
 #include <vector>
 
 #include "../test_scenes.h"
@@ -26,6 +28,7 @@ struct Emulated {
   std::vector<double> out;  // per problem: steps, objects, p_cra
   std::vector<double> ego_col;
   std::vector<char> ego_hit;
+  std::vector<char> ego_hits;  // CollisionBody's marks
 };
 
 // What CudaBackend::RunBatch launches, as loops over the thread indices.
@@ -44,10 +47,18 @@ Emulated RunKernelBodies(const std::vector<const internal::Problem*>& problems) 
   }
   for (size_t k = 0; k < ne; ++k) cuda::TrigBody(k, eyaw.data(), ec.data(), es.data());
   for (size_t k = 0; k < nc; ++k) cuda::TrigBody(k, cyaw.data(), cc.data(), cs.data());
+  const size_t blocks = static_cast<size_t>(cuda::BoundsBlocks(h.steps)) * 4;
+  std::vector<double> ego_bounds(blocks * h.TotalEgo()), co_bounds(blocks * h.TotalCo());
+  for (int t = 0; t < h.TotalEgo(); ++t)
+    cuda::BoundsBody(t, h.TotalEgo(), h.steps, ex.data(), ey.data(), ego_bounds.data());
+  for (int t = 0; t < h.TotalCo(); ++t)
+    cuda::BoundsBody(t, h.TotalCo(), h.steps, cx.data(), cy.data(), co_bounds.data());
   e.first.assign(h.TotalPairs(), -1);
+  e.ego_hits.assign(h.TotalEgo(), 0);
   for (long long k = 0; k < h.TotalPairs(); ++k) {
     cuda::CollisionBody(k, b, cuda::Poses{ex.data(), ey.data(), ec.data(), es.data()},
-                        cuda::Poses{cx.data(), cy.data(), cc.data(), cs.data()}, e.first.data());
+                        cuda::Poses{cx.data(), cy.data(), cc.data(), cs.data()},
+                        ego_bounds.data(), co_bounds.data(), e.first.data(), e.ego_hits.data());
   }
   const size_t ego_obj = std::max<long long>(h.TotalEgoObj(), 1);
   std::vector<int> hist(static_cast<size_t>(h.TotalEgo()) * (h.steps + 1)), events(h.TotalPairs());
@@ -56,8 +67,8 @@ Emulated RunKernelBodies(const std::vector<const internal::Problem*>& problems) 
   e.ego_hit.assign(h.TotalEgo(), 2);
   const cuda::RiskScratch w{hist.data(), events.data(), contrib.data(), mass.data()};
   for (int g = 0; g < h.TotalEgo(); ++g) {
-    cuda::RiskBody(g, b, e.first.data(), h.p_co.data(), w, e.ego_col.data(), e.ego_hit.data(),
-                   by_step.data(), by_obj.data());
+    cuda::RiskBody(g, b, e.first.data(), h.p_co.data(), e.ego_hits.data(), w, e.ego_col.data(),
+                   e.ego_hit.data(), by_step.data(), by_obj.data());
   }
   e.out.assign(h.TotalOut(), -1.0);
   for (int q = 0; q < h.TotalOut(); ++q) {
@@ -211,5 +222,56 @@ TEST(CudaKernelBodies, ProblemOfSkipsEmptyRanges) {
   EXPECT_EQ(cuda::ProblemOf(base, 5, 11LL), 4);
 }
 
+
+// The bounds of a block are its centres' least and greatest x and y (a last, shorter block
+// included), and BlockApart holds only where every step of the block is farther apart than the
+// gap in x or in y: random walks, some close and some far, step-major as on the device.
+TEST(CudaKernelBodies, BlocksApartHaveEveryStepApart) {
+  const int steps = 23, total = 40;  // 3 blocks, the last of 3 steps
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> start(-30.0, 30.0), move(-1.5, 1.5);
+  std::vector<double> x(static_cast<size_t>(steps) * total), y(x.size());
+  for (int t = 0; t < total; ++t) {
+    double px = start(rng), py = start(rng);
+    for (int n = 0; n < steps; ++n) {
+      px += move(rng);
+      py += move(rng);
+      x[static_cast<size_t>(n) * total + t] = px;
+      y[static_cast<size_t>(n) * total + t] = py;
+    }
+  }
+  const int blocks = cuda::BoundsBlocks(steps);
+  ASSERT_EQ(blocks, 3);
+  std::vector<double> bounds(static_cast<size_t>(blocks) * 4 * total);
+  for (int t = 0; t < total; ++t) cuda::BoundsBody(t, total, steps, x.data(), y.data(), bounds.data());
+  const double gap = 4.0;
+  int apart = 0, near = 0;
+  for (int i = 0; i < total; ++i) {
+    for (int j = 0; j < total; ++j) {
+      for (int block = 0; block < blocks; ++block) {
+        const int begin = block * cuda::kBoundsBlock, end = std::min(steps, begin + cuda::kBoundsBlock);
+        double x0 = 1e9, x1 = -1e9;
+        for (int n = begin; n < end; ++n) {
+          x0 = std::min(x0, x[static_cast<size_t>(n) * total + i]);
+          x1 = std::max(x1, x[static_cast<size_t>(n) * total + i]);
+        }
+        EXPECT_EQ(bounds[static_cast<size_t>(4 * block) * total + i], x0);
+        EXPECT_EQ(bounds[static_cast<size_t>(4 * block + 1) * total + i], x1);
+        bool every_step_apart = true;
+        for (int n = begin; n < end; ++n) {
+          const size_t a = static_cast<size_t>(n) * total + i, c = static_cast<size_t>(n) * total + j;
+          every_step_apart &= std::fabs(x[c] - x[a]) > gap || std::fabs(y[c] - y[a]) > gap;
+        }
+        const bool skipped =
+            cuda::BlockApart(bounds.data(), total, i, bounds.data(), total, j, block, gap);
+        EXPECT_TRUE(!skipped || every_step_apart) << i << " " << j << " block " << block;
+        apart += skipped;
+        near += !every_step_apart;
+      }
+    }
+  }
+  EXPECT_GT(apart, 0);  // both kinds occur, so both sides were checked
+  EXPECT_GT(near, 0);
+}
 }  // namespace
 }  // namespace criticality
