@@ -49,6 +49,16 @@ struct Options {
   int paths{12};
 };
 
+// The estimator's options from the command line's, for the named backend.
+EstimatorOptions BackendOptions(const Options& opt, const std::string& backend) {
+  EstimatorOptions eopt;
+  eopt.backend = ParseBackend(backend);
+  eopt.threads = opt.threads;
+  eopt.simd = !opt.no_simd;
+  eopt.skip_out_of_reach = !opt.no_skip;
+  return eopt;
+}
+
 struct Timing {
   Result last;
   std::vector<double> total, traj, coll, risk;
@@ -192,11 +202,7 @@ int Discrimination(const Params& params, const Options& opt) {
       if (!out) throw InputError("--save-scenes: cannot write '" + file + "'");
     }
   }
-  EstimatorOptions eopt;
-  eopt.backend = ParseBackend(opt.backend);
-  eopt.threads = opt.threads;
-  eopt.simd = !opt.no_simd;
-  eopt.skip_out_of_reach = !opt.no_skip;
+  EstimatorOptions eopt = BackendOptions(opt, opt.backend);
   Estimator estimator(params, eopt);
   std::printf("discrimination benchmark, preset %s, backend %s\n", opt.preset.c_str(),
               BackendName(estimator.options().backend).c_str());
@@ -250,11 +256,7 @@ int Batch(const Scene& scene, const Params& params, const Options& opt) {
   for (int k = 0; k < opt.batch; ++k) {
     scenes[k].ego.state.speed_mps *= 0.8 + 0.4 * (k % 101) / 100.0;
   }
-  EstimatorOptions eopt;
-  eopt.backend = ParseBackend(opt.backend);
-  eopt.threads = opt.threads;
-  eopt.simd = !opt.no_simd;
-  eopt.skip_out_of_reach = !opt.no_skip;
+  EstimatorOptions eopt = BackendOptions(opt, opt.backend);
   Estimator estimator(params, eopt);
   for (int k = 0; k < opt.warmup; ++k) estimator.EstimateBatch(scenes);
   std::vector<double> ms;
@@ -318,11 +320,7 @@ int Fleet(const Params& params, const Options& opt) {
   std::string json = "{\"fleet\":\"" + JsonEscape(opt.fleet) + "\",\"egos\":" +
                      std::to_string(scenes.size()) + ",\"backends\":[";
   for (size_t k = 0; k < names.size(); ++k) {
-    EstimatorOptions eopt;
-    eopt.backend = ParseBackend(names[k]);
-    eopt.threads = opt.threads;
-    eopt.simd = !opt.no_simd;
-    eopt.skip_out_of_reach = !opt.no_skip;
+    EstimatorOptions eopt = BackendOptions(opt, names[k]);
     Estimator estimator(params, eopt);
     for (int w = 0; w < opt.warmup; ++w) estimator.EstimateBatch(scenes);
     std::vector<double> ms;
@@ -462,11 +460,7 @@ std::string HypothesisJson(const EscapeRoute& e, bool reference) {
 // picture of the scene (the campaign report's warning scenes).
 int Paths(const Scene& scene, Params params, const Options& opt) {
   params.max_escape_routes = 1 << 30;  // every ego hypothesis, re-simulated with its poses
-  EstimatorOptions eopt;
-  eopt.backend = ParseBackend(opt.backend);
-  eopt.threads = opt.threads;
-  eopt.simd = !opt.no_simd;
-  eopt.skip_out_of_reach = !opt.no_skip;
+  EstimatorOptions eopt = BackendOptions(opt, opt.backend);
   Estimator estimator(params, eopt);
   const Result r = estimator.Estimate(scene);
   std::vector<const EscapeRoute*> probable, colliding;
@@ -594,11 +588,7 @@ int main(int argc, char** argv) {
     params.profiles = opt.profiles;
     if (opt.discrimination) return Discrimination(params, opt);
     if (!opt.fleet.empty()) return Fleet(params, opt);
-    EstimatorOptions eopt;
-    eopt.backend = ParseBackend(opt.backend);
-    eopt.threads = opt.threads;
-    eopt.simd = !opt.no_simd;
-    eopt.skip_out_of_reach = !opt.no_skip;
+    EstimatorOptions eopt = BackendOptions(opt, opt.backend);
     if (opt.cos > 100000)
       throw InputError("--cos = " + std::to_string(opt.cos) + ": at most 100000");
     Scene scene;
