@@ -77,7 +77,9 @@ def parse_args(argv):
     ap.add_argument("--family", choices=sorted(network_family.PROFILES),
                     help="instead of the designed scenarios: the held-out protocol's generated "
                     "networks (tools/evaluate/network_family.py; quick: seeds 1 and 3, 12 runs "
-                    "per variant; full: seeds 1-4), every vehicle an ego, tuning and held-out "
+                    "per variant; full: seeds 1-4; violations: priority-junction grid and rand nets "
+                    "where a seeded 30 %% of cars and trucks ignore right of way, seeds 5 and 6, "
+                    "8 runs), every vehicle an ego, tuning and held-out "
                     "sets side by side; default variants: ours and observable")
     ap.add_argument("--family-time-limit", type=int, default=3600,
                     help="seconds one family run may take before it is stopped (default 3600)")

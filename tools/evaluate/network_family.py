@@ -13,10 +13,19 @@ A rule (a new mechanism, a changed parameter) is kept only if it helps the held-
 sets are reported (tools/evaluate/README.md, "Held-out networks"). The `quick` profile takes one
 seed of each set (1 and 3), `full` all four.
 
+Right-of-way violations (added on 2026-12-04, before any figure of these networks was looked
+at; the same rule of use): the profile `violations` runs netgenerate grid and rand networks with
+priority junctions (kinds `gv`, `rv`), denser car traffic, and a seeded share of the cars and
+trucks (VIOLATOR_SHARE) told through scenario.cfg events to ignore right of way at intersections
+(speed mode 23). Seed 5 is its tuning set, seed 6 its held-out set, both step lengths. These runs
+are where junction conflicts (crossings, merges) end in SUMO collisions.
+
 Generation is deterministic: netgenerate and randomTrips with fixed seeds; a network folder is
 rebuilt when the commands that made it change (FAMILY_COMMANDS.txt in it)."""
 
 import os
+import random
+import re
 import shutil
 import subprocess
 import sys
@@ -26,12 +35,20 @@ KINDS = ("grid", "spider", "rand")
 SEEDS = (1, 2, 3, 4)
 TUNING_SEEDS = (1, 2)
 STEPS_S = (1.0, 0.1)
-PROFILES = {"quick": (1, 3), "full": SEEDS}
+PROFILES = {"quick": (1, 3), "full": SEEDS, "violations": (5, 6)}
+# The right-of-way violation networks: their kinds, their tuning seed, the share of cars and
+# trucks that ignore right of way, and the speed mode that makes them (SUMO's bits: all but 8,
+# "regard right of way at intersections").
+VIOLATION_KINDS = ("gv", "rv")
+VIOLATION_TUNING_SEEDS = (5,)
+VIOLATOR_SHARE = 0.3
+VIOLATOR_SPEED_MODE = 23
 # Simulated seconds per step length: the 0.1 s runs cost ten steps per second. With every
 # vehicle an ego a 1 s grid run of 300 s with cars every 2 s took 410 s on one core.
 END_S = {1.0: 200.0, 0.1: 60.0}
 # randomTrips periods (s between departures; a lower one is more traffic), per kind of road user.
 PERIODS_S = {"car": 3.0, "truck": 15.0, "bike": 10.0, "ped": 6.0}
+VIOLATION_PERIODS_S = {"car": 1.0, "truck": 8.0, "bike": 10.0, "ped": 6.0}
 
 
 @dataclass(frozen=True)
@@ -41,8 +58,14 @@ class Network:
     step_s: float
 
     @property
+    def violations(self):
+        """Whether some of its drivers ignore right of way (the `violations` profile)."""
+        return self.kind in VIOLATION_KINDS
+
+    @property
     def split(self):
-        return "tuning" if self.seed in TUNING_SEEDS else "held-out"
+        tuning = VIOLATION_TUNING_SEEDS if self.violations else TUNING_SEEDS
+        return "tuning" if self.seed in tuning else "held-out"
 
     @property
     def name(self):
@@ -62,7 +85,8 @@ def family(profile="full"):
     if profile not in PROFILES:
         raise ValueError(f"network family: no profile {profile!r} (known: "
                          f"{', '.join(PROFILES)})")
-    return [Network(k, s, dt) for k in KINDS for s in PROFILES[profile] for dt in STEPS_S]
+    kinds = VIOLATION_KINDS if profile == "violations" else KINDS
+    return [Network(k, s, dt) for k in kinds for s in PROFILES[profile] for dt in STEPS_S]
 
 
 def netgenerate_args(kind, seed):
@@ -82,23 +106,58 @@ def netgenerate_args(kind, seed):
     if kind == "rand":
         return ["--rand", "--rand.iterations", "60", "--rand.max-distance", "200",
                 "--default.lanenumber", str(1 + seed % 2), "--tls.guess"] + common
-    raise ValueError(f"network family: no network kind {kind!r} (known: {', '.join(KINDS)})")
+    if kind == "gv":  # priority junctions: who yields is the junction's rule, not a light
+        return ["--grid", "--grid.number", "4", "--grid.length", str(100 + 10 * seed),
+                "--default.lanenumber", str(1 + seed % 2), "--default-junction-type",
+                "priority"] + common
+    if kind == "rv":
+        return ["--rand", "--rand.iterations", "60", "--rand.max-distance", "200",
+                "--default.lanenumber", str(1 + seed % 2), "--default-junction-type",
+                "priority"] + common
+    raise ValueError(f"network family: no network kind {kind!r} (known: "
+                     f"{', '.join(KINDS + VIOLATION_KINDS)})")
 
 
-def traffic_args(seed, end_s):
+def traffic_args(seed, end_s, periods=PERIODS_S):
     """{file stem: randomTrips options} for the traffic of one network: cars and trucks from
     the fringe, bicycles, pedestrians; routes checked by duarouter (--validate)."""
     common = ["-s", str(seed), "-b", "0", "-e", f"{end_s:g}"]
     return {
-        "cars": common + ["-p", f"{PERIODS_S['car']:g}", "--prefix", "car", "--fringe-factor",
+        "cars": common + ["-p", f"{periods['car']:g}", "--prefix", "car", "--fringe-factor",
                           "5", "--validate"],
-        "trucks": common + ["-p", f"{PERIODS_S['truck']:g}", "--prefix", "truck",
+        "trucks": common + ["-p", f"{periods['truck']:g}", "--prefix", "truck",
                             "--vehicle-class", "truck", "--vclass", "truck", "--fringe-factor",
                             "5", "--validate"],
-        "bikes": common + ["-p", f"{PERIODS_S['bike']:g}", "--prefix", "bike",
+        "bikes": common + ["-p", f"{periods['bike']:g}", "--prefix", "bike",
                            "--vehicle-class", "bicycle", "--vclass", "bicycle", "--validate"],
-        "peds": common + ["-p", f"{PERIODS_S['ped']:g}", "--prefix", "ped", "--pedestrians"],
+        "peds": common + ["-p", f"{periods['ped']:g}", "--prefix", "ped", "--pedestrians"],
     }
+
+
+def net_traffic_args(net, end_s):
+    """traffic_args for `net`: denser cars and trucks on the violation networks."""
+    return traffic_args(net.seed, end_s, VIOLATION_PERIODS_S if net.violations else PERIODS_S)
+
+
+def violators(net, route_texts):
+    """The cars and trucks of `net` that ignore right of way: a seeded VIOLATOR_SHARE of the
+    vehicle IDs in the route files' texts, in the order the files list them."""
+    ids = []
+    for text in route_texts:
+        ids += re.findall(r'<vehicle id="((?:car|truck)[0-9]+)"', text)
+    rng = random.Random(net.seed)
+    return [v for v in ids if rng.random() < VIOLATOR_SHARE]
+
+
+def scenario_cfg_text(net, ids):
+    """The driver's scenario.cfg of a violation network: its .sumocfg (one folder up) and one
+    event per violator, applied when the vehicle enters the network."""
+    lines = [f"# Written by tools/evaluate/network_family.py ({net.name}, {net.split} set):",
+             f"# {len(ids)} vehicles ignore right of way at intersections "
+             f"(speed mode {VIOLATOR_SPEED_MODE}).",
+             f"sumo-config = ../{net.name}.sumocfg"]
+    lines += [f"event = 0 {v} speed-mode {VIOLATOR_SPEED_MODE}" for v in ids]
+    return "\n".join(lines) + "\n"
 
 
 def sumocfg_text(net, route_files):
@@ -141,7 +200,7 @@ def commands(net, folder):
     home = _sumo_home()
     net_file = os.path.join(folder, f"{net.net_name}.net.xml")
     out = [["netgenerate"] + netgenerate_args(net.kind, net.seed) + ["-o", net_file]]
-    for stem, args in traffic_args(net.seed, END_S[max(STEPS_S)]).items():
+    for stem, args in net_traffic_args(net, END_S[max(STEPS_S)]).items():
         routes = os.path.join(folder, f"{stem}.rou.xml")
         trips = os.path.join(folder, f"{stem}.trips.xml")
         cmd = [sys.executable, os.path.join(home, "tools", "randomTrips.py"), "-n", net_file]
@@ -179,8 +238,19 @@ def generate(net, root, log=None):
         with open(stamp, "w", encoding="utf-8") as f:  # last: a complete folder
             f.write(record)
     cfg = os.path.join(folder, f"{net.name}.sumocfg")
-    text = sumocfg_text(net, [f"{s}.rou.xml" for s in traffic_args(net.seed, net.end_s)])
-    if not os.path.exists(cfg) or open(cfg, encoding="utf-8").read() != text:
-        with open(cfg, "w", encoding="utf-8") as f:
+    stems = list(net_traffic_args(net, net.end_s))
+    text = sumocfg_text(net, [f"{s}.rou.xml" for s in stems])
+    _write_if_changed(cfg, text)
+    if not net.violations:
+        return cfg
+    routes = [open(os.path.join(folder, f"{s}.rou.xml"), encoding="utf-8").read() for s in stems]
+    scenario = os.path.join(folder, net.name, "scenario.cfg")  # the run is named by its folder
+    os.makedirs(os.path.dirname(scenario), exist_ok=True)
+    _write_if_changed(scenario, scenario_cfg_text(net, violators(net, routes)))
+    return scenario
+
+
+def _write_if_changed(path, text):
+    if not os.path.exists(path) or open(path, encoding="utf-8").read() != text:
+        with open(path, "w", encoding="utf-8") as f:
             f.write(text)
-    return cfg

@@ -452,6 +452,42 @@ class NetworkFamilyTest(unittest.TestCase):
         self.assertIn("held-out", cfg)
 
 
+class ViolationFamilyTest(unittest.TestCase):
+    def test_violation_networks_have_their_own_split_and_priority_junctions(self):
+        nets = network_family.family("violations")
+        self.assertEqual({n.kind for n in nets}, set(network_family.VIOLATION_KINDS))
+        self.assertEqual({(n.seed, n.split) for n in nets}, {(5, "tuning"), (6, "held-out")})
+        self.assertTrue(all(n.violations for n in nets))
+        self.assertFalse(any(n.violations for n in network_family.family("full")))
+        for kind in network_family.VIOLATION_KINDS:
+            args = network_family.netgenerate_args(kind, 6)
+            self.assertIn("priority", args)
+            self.assertNotIn("--tls.guess", args)
+        dense = network_family.net_traffic_args(nets[0], 200)["cars"]
+        plain = network_family.net_traffic_args(network_family.Network("grid", 1, 1.0), 200)
+        self.assertLess(float(dense[dense.index("-p") + 1]),
+                        float(plain["cars"][plain["cars"].index("-p") + 1]))
+
+    def test_violators_are_a_seeded_share_of_cars_and_trucks_named_in_events(self):
+        routes = ["".join(f'<vehicle id="car{k}" depart="{k}"/>' for k in range(400)),
+                  "".join(f'<vehicle id="truck{k}" depart="{k}"/>' for k in range(100)) +
+                  "".join(f'<vehicle id="bike{k}" depart="{k}"/>' for k in range(50))]
+        net = network_family.Network("rv", 6, 1.0)
+        ids = network_family.violators(net, routes)
+        self.assertEqual(ids, network_family.violators(net, routes))  # deterministic
+        self.assertNotEqual(ids, network_family.violators(network_family.Network("rv", 5, 1.0),
+                                                          routes))
+        self.assertFalse(any(v.startswith("bike") for v in ids))
+        self.assertTrue(any(v.startswith("truck") for v in ids))
+        share = len(ids) / 500
+        self.assertGreater(share, network_family.VIOLATOR_SHARE - 0.06)
+        self.assertLess(share, network_family.VIOLATOR_SHARE + 0.06)
+        text = network_family.scenario_cfg_text(net, ids)
+        self.assertIn("sumo-config = ../rv6_1s.sumocfg", text)
+        events = [l for l in text.splitlines() if l.startswith("event = ")]
+        self.assertEqual(events, [f"event = 0 {v} speed-mode 23" for v in ids])
+
+
 class FamilyEvalTest(unittest.TestCase):
     def test_a_rewarning_opens_within_the_gap_after_the_same_egos_last_episode(self):
         w = run_data.Warning
