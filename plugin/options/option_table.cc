@@ -143,6 +143,10 @@ void OptionTable::Estimator(DriverOptions* o) {
       "ablation (ours): such a waiting pedestrian keeps its speed in its reference hypothesis "
       "instead of stopping where the crossing begins, as SUMO's persons do (simulator "
       "knowledge too: plugin/README.md, \"Pedestrians on the footway\")")(
+      "no-yield-stops", po::bool_switch(&raw.no_yield_stops),
+      "experiment: no yield line for a vehicle at a link without priority while SUMO has a foe "
+      "approaching it (simulator knowledge: the link's has_foe); stop signs, red and yellow "
+      "lights stay")(
       "no-heading-hold", po::bool_switch(&raw.no_heading_hold),
       "ablation (ours): take every vehicle's heading as SUMO reports it, also where it turns "
       "faster than the vehicle can between two steps (at a junction's corners; by default "

@@ -37,6 +37,12 @@ struct SceneConfig {
    *  its expected acceleration (its reference hypothesis) is the deceleration that stops it
    *  there (CrossingStopDecel). Needs crossing_obligations; --no-crossing-stops turns it off. */
   bool crossing_stops{true};
+  /** A vehicle at a link without priority ('m', 'g', '=') while SUMO has a foe approaching it
+   *  (the link's has_foe, which only the simulator knows) gets a yield line (stop_lines.h).
+   *  --no-yield-stops leaves those lines out (stop signs, red and yellow lights stay): SUMO's
+   *  vehicle goes on when its gap before the foe suffices, so "a foe approaches" is not "it
+   *  stops" (bench/RESULTS.md, right-of-way violations). */
+  bool yield_stops{true};
   /** --bent-bodies (off by default: measured, not kept; bench/RESULTS.md): a vehicle whose way
    *  behind its front turns (SUMO's box of it, front to back, shorter than the vehicle: IsBent)
    *  is a chain of boxes along that way, each keeping to the lanes it stands on; the first box

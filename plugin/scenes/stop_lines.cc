@@ -33,7 +33,8 @@ std::optional<StopLine> StopLineOf(const VehicleOnLane& v, const std::string& id
     if (v.observable_only && (st == "y" || st == "Y"))
       return StopLine{StopLine::Reason::kYellowLight, std::fmax(0.0, to_end)};
     const bool must_stop = st == "s" || st == "w";
-    const bool must_yield = (st == "m" || st == "g" || st == "=") && link.has_foe;
+    const bool must_yield =
+        config.yield_stops && (st == "m" || st == "g" || st == "=") && link.has_foe;
     if (must_stop || must_yield) return StopLine{StopLine::Reason::kYield, std::fmax(0.0, to_end)};
     break;
   }

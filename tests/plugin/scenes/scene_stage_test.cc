@@ -135,6 +135,30 @@ TEST(SceneStage, ARedLightOrAYieldToAnApproachingFoeIsAStopLine) {
   EXPECT_FALSE(nstage.Run(Observe(n, {"minor"})).EgoOf(0).stop_line.has_value());
 }
 
+// --no-yield-stops: the yield line to an approaching foe goes; a red light and a stop sign stay.
+TEST(SceneStage, WithoutYieldStopsOnlyLightsAndStopSignsAreStopLines) {
+  SceneConfig config;
+  config.yield_stops = false;
+  FakeSumoWorld y;
+  y.AddEdge("E", 0, 0, 100, 0, 1);
+  y.AddEdge("F", 100, 0, 200, 0, 1);
+  y.AddEdge("G", 0, 10, 100, 10, 1);
+  y.AddEdge("H", 100, 10, 200, 10, 1);
+  y.AddLink("E_0", "F_0", "m", /*has_foe=*/true);
+  y.AddLink("G_0", "H_0", "s", /*has_foe=*/true);
+  y.AddVehicle("minor", 85, 0, 90, 10, "E_0", 85, {"E", "F"});
+  y.AddVehicle("stop_sign", 85, 10, 90, 10, "G_0", 85, {"G", "H"});
+  y.AddVehicle("red", 50, 10, 90, 10, "G_0", 50, {"G", "H"});
+  y.signals["red"] = SignalReport{30.0, 'r'};
+  SceneStage stage(config, y.StepLength(), true, &y, &y);
+  const SceneBatch b = stage.Run(Observe(y, {"minor", "red", "stop_sign"}));
+  EXPECT_FALSE(b.EgoOf(0).stop_line.has_value());
+  ASSERT_TRUE(b.EgoOf(1).stop_line.has_value());
+  EXPECT_EQ(b.EgoOf(1).stop_line->reason, StopLine::Reason::kRedLight);
+  ASSERT_TRUE(b.EgoOf(2).stop_line.has_value());
+  EXPECT_EQ(b.EgoOf(2).stop_line->reason, StopLine::Reason::kYield);
+}
+
 TEST(SceneStage, AFollowerExpectsToStopBehindALeaderThatMustStop) {
   FakeSumoWorld w;
   w.AddEdge("E", 0, 0, 200, 0, 1);
