@@ -66,11 +66,12 @@ status=0
 run() {  # run CMD...: the command under the step timeout; a failure marks the run failed
   local rc=0
   timeout "$step_timeout" "${launch[@]}" "$@" || rc=$?
-  if [ $rc -ne 0 ]; then
-    status=1
-    [ $rc -eq 124 ] && echo "gpu_bench: stopped after ${step_timeout} s: $*" >&2
-    [ $rc -ne 124 ] && echo "gpu_bench: exit $rc: $*" >&2
+  if [ $rc -eq 124 ]; then
+    echo "gpu_bench: stopped after ${step_timeout} s: $*" >&2
+  elif [ $rc -ne 0 ]; then
+    echo "gpu_bench: exit $rc: $*" >&2
   fi
+  [ $rc -eq 0 ] || status=1
   return 0
 }
 for t in "${tests[@]}"; do

@@ -21,6 +21,17 @@ struct BatchHost {
   std::vector<double> co_half_length, co_half_width, ego_half_length, ego_half_width;
   std::vector<double> p_co, p_ego;
 
+  /** Empty, keeping the vectors' memory (MakeBatch fills it again). */
+  void Clear() {
+    for (auto* v : {&set_base, &co_object_of, &co_offset}) v->clear();
+    for (auto* v : {&ego_base, &co_base, &obj_base, &out_base}) v->assign(1, 0);
+    for (auto* v : {&pair_base, &ego_obj_base}) v->assign(1, 0);
+    for (auto* v : {&co_half_length, &co_half_width, &ego_half_length, &ego_half_width, &p_co,
+                    &p_ego})
+      v->clear();
+    sets.clear();
+  }
+
   int TotalEgo() const { return ego_base.back(); }
   int TotalCo() const { return co_base.back(); }
   long long TotalPairs() const { return pair_base.back(); }
@@ -54,13 +65,7 @@ struct BatchHost {
  *  the copy itself. */
 inline void MakeBatch(const std::vector<const internal::Problem*>& problems, BatchHost* out) {
   BatchHost& b = *out;
-  for (auto* v : {&b.set_base, &b.co_object_of, &b.co_offset}) v->clear();
-  for (auto* v : {&b.ego_base, &b.co_base, &b.obj_base, &b.out_base}) v->assign(1, 0);
-  for (auto* v : {&b.pair_base, &b.ego_obj_base}) v->assign(1, 0);
-  for (auto* v : {&b.co_half_length, &b.co_half_width, &b.ego_half_length, &b.ego_half_width,
-                  &b.p_co, &b.p_ego})
-    v->clear();
-  b.sets.clear();
+  b.Clear();
   b.problems = static_cast<int>(problems.size());
   b.steps = problems.empty() ? 0 : problems.front()->Steps();
   size_t sets = 0, ego = 0, co = 0;
@@ -110,7 +115,7 @@ inline BatchHost MakeBatch(const std::vector<const internal::Problem*>& problems
  *  sets and batch offsets; per ego and CO trajectory and step the poses (x, y, yaw, cos, sin);
  *  per ego x CO trajectory pair the first colliding step (int16), the risk's event slot (int)
  *  and contribution (double): 14 bytes a pair; per ego trajectory its probability, histogram
- *  (steps + 1 ints), sums by step, collision probability, hit flag and mark; the bounds of
+ *  (steps + 1 ints), sums by step, collision probability and hit mark; the bounds of
  *  every trajectory per block of steps (4 doubles); per ego trajectory x
  *  object the hit mass and sums by object; per CO trajectory its index, box and probability;
  *  its outputs. A batch takes the sum over its problems. */
@@ -124,7 +129,6 @@ inline std::uint64_t DeviceBytes(const internal::Problem& pb) {
   b += 7 * sizeof(int) + 2 * sizeof(long long) + 2 * d;        // offsets, ego box
   b += (ego + co) * steps * 5 * d;                             // poses
   b += (ego + co) * BoundsBlocks(pb.Steps()) * 4 * d;          // their bounds per block
-  b += ego;                                                    // hit marks
   b += ego * co * (sizeof(std::int16_t) + sizeof(int) + d);    // pair matrix, risk scratch
   b += ego * (d + (steps + 1) * sizeof(int) + steps * d + d + 1);
   b += ego * obj * 2 * d;                                      // hit mass, sums by object

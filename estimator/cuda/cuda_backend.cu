@@ -108,11 +108,11 @@ __global__ void CollisionKernel(BatchLayout b, long long pairs, Poses ego, Poses
 }
 
 __global__ void RiskKernel(BatchLayout b, const std::int16_t* first, const double* p_co,
-                           const char* ego_hits, RiskScratch w, double* ego_col, char* ego_hit,
-                           double* by_step, double* by_object) {
+                           const char* ego_hits, RiskScratch w, double* ego_col, double* by_step,
+                           double* by_object) {
   const int g = blockIdx.x * blockDim.x + threadIdx.x;
   if (g < b.total_ego)
-    RiskBody(g, b, first, p_co, ego_hits, w, ego_col, ego_hit, by_step, by_object);
+    RiskBody(g, b, first, p_co, ego_hits, w, ego_col, by_step, by_object);
 }
 
 __global__ void ReduceKernel(BatchLayout b, int outputs, const double* p_ego, const double* ego_col,
@@ -187,7 +187,7 @@ class CudaBackend final : public EstimatorBackend {
   }
 
   size_t Reserved() const {
-    size_t n = d_sets_.bytes() + d_first_.bytes() + d_ego_hit_.bytes() + d_ego_hits_.bytes();
+    size_t n = d_sets_.bytes() + d_first_.bytes() + d_ego_hits_.bytes();
     for (const auto* a : {&d_set_base_, &d_ego_base_, &d_co_base_, &d_obj_base_, &d_out_base_,
                           &d_object_of_, &d_co_offset_, &d_hist_, &d_events_})
       n += a->bytes();
@@ -222,13 +222,11 @@ class CudaBackend final : public EstimatorBackend {
                   d_contrib_.Reserve(pairs, "cudaMalloc contributions"),
                   d_mass_.Reserve(ego_obj, "cudaMalloc hit mass")};
     double* ego_col = d_ego_col_.Reserve(total_ego, "cudaMalloc ego collision probability");
-    char* ego_hit = d_ego_hit_.Reserve(total_ego, "cudaMalloc ego hit");
     double* by_step = d_by_step_.Reserve(total_ego * h.steps, "cudaMalloc by step");
     double* by_obj = d_by_obj_.Reserve(ego_obj, "cudaMalloc by object");
     double* out = d_out_.Reserve(h.TotalOut(), "cudaMalloc risk output");
     RiskKernel<<<Blocks(total_ego), kThreads>>>(layout_, d_first_.get(), d_p_co_.get(),
-                                                d_ego_hits_.get(), w, ego_col, ego_hit, by_step,
-                                                by_obj);
+                                                d_ego_hits_.get(), w, ego_col, by_step, by_obj);
     Check(cudaGetLastError(), "after risk kernel launch");
     ReduceKernel<<<Blocks(h.TotalOut()), kThreads>>>(layout_, h.TotalOut(), d_p_ego_.get(), ego_col,
                                                      by_step, by_obj, out);
@@ -246,7 +244,7 @@ class CudaBackend final : public EstimatorBackend {
     if (!keep_pair_matrix) first.clear();
     d_out_.Download(&sums, h.TotalOut(), "after risk kernels (copy sums)");
     d_ego_col_.Download(&col, total_ego, "copy ego collision probabilities");
-    d_ego_hit_.Download(&hit, total_ego, "copy ego hits");
+    d_ego_hits_.Download(&hit, total_ego, "copy ego hits");
     if (keep_pair_matrix) d_first_.Download(&first, pairs, "copy pair matrices");
     // Problems with carriages need their own slice of the device's pair matrix: copied here,
     // in order, before the host's threads take the problems.
@@ -463,7 +461,7 @@ class CudaBackend final : public EstimatorBackend {
   DeviceArray<std::int16_t> d_first_;
   DeviceArray<double> d_contrib_, d_mass_, d_ego_col_, d_by_step_, d_by_obj_, d_out_;
   DeviceArray<double> d_ego_bounds_, d_co_bounds_;
-  DeviceArray<char> d_ego_hit_, d_ego_hits_;
+  DeviceArray<char> d_ego_hits_;
 };
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "core/chronological_risk.h"
 #include "core/hd.h"
 #include "core/hypothesis_set.h"
+#include "core/min_max.h"
 #include "core/oriented_box.h"
 #include "core/trajectory_generation.h"
 
@@ -107,17 +108,17 @@ CRIT_HD int BoundsBlocks(int steps) { return (steps + kBoundsBlock - 1) / kBound
 CRIT_HD void BoundsBody(int t, int total, int steps, const double* x, const double* y,
                         double* bounds) {
   for (int block = 0; block * kBoundsBlock < steps; ++block) {
-    const int end = block * kBoundsBlock + kBoundsBlock < steps ? block * kBoundsBlock + kBoundsBlock
-                                                                : steps;
-    double x0 = x[static_cast<size_t>(block) * kBoundsBlock * total + t], x1 = x0;
-    double y0 = y[static_cast<size_t>(block) * kBoundsBlock * total + t], y1 = y0;
-    for (int n = block * kBoundsBlock + 1; n < end; ++n) {
+    const int begin = block * kBoundsBlock;
+    const int end = begin + kBoundsBlock < steps ? begin + kBoundsBlock : steps;
+    double x0 = x[static_cast<size_t>(begin) * total + t], x1 = x0;
+    double y0 = y[static_cast<size_t>(begin) * total + t], y1 = y0;
+    for (int n = begin + 1; n < end; ++n) {
       const double px = x[static_cast<size_t>(n) * total + t];
       const double py = y[static_cast<size_t>(n) * total + t];
-      x0 = px < x0 ? px : x0;
-      x1 = px > x1 ? px : x1;
-      y0 = py < y0 ? py : y0;
-      y1 = py > y1 ? py : y1;
+      x0 = core::Min(x0, px);
+      x1 = core::Max(x1, px);
+      y0 = core::Min(y0, py);
+      y1 = core::Max(y1, py);
     }
     const size_t at = static_cast<size_t>(4 * block) * total + t;
     bounds[at] = x0;
@@ -133,16 +134,11 @@ CRIT_HD void BoundsBody(int t, int total, int steps, const double* x, const doub
  *  so skipping the block changes no answer. */
 CRIT_HD bool BlockApart(const double* ego_bounds, int total_ego, int i, const double* co_bounds,
                         int total_co, int j, int block, double gap) {
-  const size_t a = static_cast<size_t>(4 * block) * total_ego + i;
-  const size_t c = static_cast<size_t>(4 * block) * total_co + j;
-  return co_bounds[c] - ego_bounds[a + total_ego] > gap ||            // CO min x > ego max x
-         ego_bounds[a] - co_bounds[c + total_co] > gap ||             // ego min x > CO max x
-         co_bounds[c + 2 * static_cast<size_t>(total_co)] -
-                 ego_bounds[a + 3 * static_cast<size_t>(total_ego)] >
-             gap ||
-         ego_bounds[a + 2 * static_cast<size_t>(total_ego)] -
-                 co_bounds[c + 3 * static_cast<size_t>(total_co)] >
-             gap;
+  const double* e = ego_bounds + static_cast<size_t>(4 * block) * total_ego + i;
+  const double* c = co_bounds + static_cast<size_t>(4 * block) * total_co + j;
+  const size_t se = total_ego, sc = total_co;  // strides between min x, max x, min y, max y
+  return c[0] - e[se] > gap || e[0] - c[sc] > gap ||                // apart in x
+         c[2 * sc] - e[3 * se] > gap || e[2 * se] - c[3 * sc] > gap;  // apart in y
 }
 
 /** Thread k (a pair of the batch): the first colliding step (1-based, 0 = none) of its ego and
@@ -187,14 +183,13 @@ CRIT_HD void CollisionBody(long long k, const BatchLayout& b, const Poses& ego, 
 /** Thread g (an ego hypothesis of the batch): its colliding CO trajectories in chronological
  *  order (counting sort by step, stable in j), the paper's chronological approximation, and
  *  its split over steps and objects (not yet weighted by p_EGO). A hypothesis that no pair
- *  marked in ego_hits (CollisionBody) collides with nothing: its collision probability is 0
- *  and its row is not read (ReduceBody skips it). */
+ *  marked in ego_hits (CollisionBody; the marks are also the hits the host reads) collides
+ *  with nothing: its collision probability is 0 and its row is not read (ReduceBody skips it). */
 CRIT_HD void RiskBody(int g, const BatchLayout& b, const std::int16_t* first, const double* p_co,
-                      const char* ego_hits, const RiskScratch& w, double* ego_col, char* ego_hit,
+                      const char* ego_hits, const RiskScratch& w, double* ego_col,
                       double* by_step, double* by_object) {
   if (!ego_hits[g]) {
     ego_col[g] = 0.0;
-    ego_hit[g] = 0;
     return;
   }
   const int p = ProblemOf(b.ego_base, b.problems, g);
@@ -210,7 +205,6 @@ CRIT_HD void RiskBody(int g, const BatchLayout& b, const std::int16_t* first, co
       first + pairs, n_co, steps, n_obj, p_co + b.co_base[p], object_of,
       w.histogram + static_cast<size_t>(g) * (steps + 1), w.events + pairs, w.contrib + pairs,
       w.hit_mass + objs, by_step + static_cast<size_t>(g) * steps, by_object + objs, &n_events);
-  ego_hit[g] = n_events > 0;
 }
 
 /** Thread q (a risk output of the batch: per problem its steps, objects, then p_cra): summed

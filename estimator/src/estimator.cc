@@ -1,6 +1,7 @@
 #include "criticality/estimator.h"
 
 #include <chrono>
+#include <exception>
 
 #include "cpu/cpu_backend.h"
 #include "cpu/reference_backend.h"
@@ -222,34 +223,24 @@ std::vector<Result> Estimator::EstimateBatch(const std::vector<Scene>& scenes) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<internal::Problem> built, problems;
   std::vector<ReachShortcut> shortcuts(scenes.size());
-  built.reserve(scenes.size());
-  problems.reserve(scenes.size());
-  if (options_.backend == Backend::kCuda && scenes.size() > 1) {
-    // The host's share of a device batch, the problems built on the host's threads, each into
-    // its own slot; a scene that cannot be built is reported as the sequential loop would (the
-    // first in scene order).
-    built.resize(scenes.size());
-    problems.resize(scenes.size());
-    std::vector<std::exception_ptr> errors(scenes.size());
-    internal::ParallelForDynamic(
-        static_cast<int>(scenes.size()), internal::ResolveThreads(options_.threads), [&](int k) {
-          try {
-            built[k] = internal::BuildProblem(scenes[k], params_);
-            problems[k] =
-                options_.reach_shortcut ? shortcuts[k].Apply(built[k], options_.simd) : built[k];
-          } catch (...) {
-            errors[k] = std::current_exception();
-          }
-        });
-    for (const std::exception_ptr& e : errors)
-      if (e) std::rethrow_exception(e);
-  } else {
-    for (size_t k = 0; k < scenes.size(); ++k) {
-      built.push_back(internal::BuildProblem(scenes[k], params_));
-      problems.push_back(options_.reach_shortcut ? shortcuts[k].Apply(built.back(), options_.simd)
-                                                 : built.back());
+  // Each problem into its own slot: for a device batch on the host's threads (the device waits
+  // for them), otherwise on this one. A scene that cannot be built is reported as a sequential
+  // loop would (the first in scene order).
+  built.resize(scenes.size());
+  problems.resize(scenes.size());
+  std::vector<std::exception_ptr> errors(scenes.size());
+  const int threads = options_.backend == Backend::kCuda ? internal::ResolveThreads(options_.threads)
+                                                         : 1;
+  internal::ParallelForDynamic(static_cast<int>(scenes.size()), threads, [&](int k) {
+    try {
+      built[k] = internal::BuildProblem(scenes[k], params_);
+      problems[k] = options_.reach_shortcut ? shortcuts[k].Apply(built[k], options_.simd) : built[k];
+    } catch (...) {
+      errors[k] = std::current_exception();
     }
-  }
+  });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   const double street_ms = MsSince(t0);
   std::vector<Result> results(scenes.size());
   std::vector<const internal::Problem*> views;

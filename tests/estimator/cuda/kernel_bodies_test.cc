@@ -27,8 +27,7 @@ struct Emulated {
   std::vector<std::int16_t> first;
   std::vector<double> out;  // per problem: steps, objects, p_cra
   std::vector<double> ego_col;
-  std::vector<char> ego_hit;
-  std::vector<char> ego_hits;  // CollisionBody's marks
+  std::vector<char> ego_hits;  // CollisionBody's marks: the hits the host reads
 };
 
 // What CudaBackend::RunBatch launches, as loops over the thread indices.
@@ -64,11 +63,10 @@ Emulated RunKernelBodies(const std::vector<const internal::Problem*>& problems) 
   std::vector<int> hist(static_cast<size_t>(h.TotalEgo()) * (h.steps + 1)), events(h.TotalPairs());
   std::vector<double> contrib(h.TotalPairs()), mass(ego_obj), by_step(ne), by_obj(ego_obj);
   e.ego_col.assign(h.TotalEgo(), -1.0);
-  e.ego_hit.assign(h.TotalEgo(), 2);
   const cuda::RiskScratch w{hist.data(), events.data(), contrib.data(), mass.data()};
   for (int g = 0; g < h.TotalEgo(); ++g) {
     cuda::RiskBody(g, b, e.first.data(), h.p_co.data(), e.ego_hits.data(), w, e.ego_col.data(),
-                   e.ego_hit.data(), by_step.data(), by_obj.data());
+                   by_step.data(), by_obj.data());
   }
   e.out.assign(h.TotalOut(), -1.0);
   for (int q = 0; q < h.TotalOut(); ++q) {
@@ -109,7 +107,7 @@ void ExpectBatchSameAsCpu(const std::vector<Scene>& scenes, const std::string& w
                                   e.ego_col.begin() + h.ego_base[p + 1]);
     EXPECT_TRUE(col == r.ego_collision_probability) << where;
     int free = 0;
-    for (int g = h.ego_base[p]; g < h.ego_base[p + 1]; ++g) free += e.ego_hit[g] == 0;
+    for (int g = h.ego_base[p]; g < h.ego_base[p + 1]; ++g) free += e.ego_hits[g] == 0;
     EXPECT_EQ(free, r.collision_free_ego_trajectories) << where;
     // The outputs for decisions, from the device's per-ego results through the host code the
     // CUDA backend runs after its kernels (FinishDecisionOutputs).
@@ -117,7 +115,7 @@ void ExpectBatchSameAsCpu(const std::vector<Scene>& scenes, const std::string& w
     d.ego_collision_probability = col;
     internal::FinishDecisionOutputs(
         problems[p], params,
-        std::vector<char>(e.ego_hit.begin() + h.ego_base[p], e.ego_hit.begin() + h.ego_base[p + 1]),
+        std::vector<char>(e.ego_hits.begin() + h.ego_base[p], e.ego_hits.begin() + h.ego_base[p + 1]),
         &d);
     EXPECT_EQ(d.p_reference, r.p_reference) << where;
     EXPECT_EQ(d.unavoidability, r.unavoidability) << where;
@@ -250,13 +248,17 @@ TEST(CudaKernelBodies, BlocksApartHaveEveryStepApart) {
     for (int j = 0; j < total; ++j) {
       for (int block = 0; block < blocks; ++block) {
         const int begin = block * cuda::kBoundsBlock, end = std::min(steps, begin + cuda::kBoundsBlock);
-        double x0 = 1e9, x1 = -1e9;
+        double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
         for (int n = begin; n < end; ++n) {
           x0 = std::min(x0, x[static_cast<size_t>(n) * total + i]);
           x1 = std::max(x1, x[static_cast<size_t>(n) * total + i]);
+          y0 = std::min(y0, y[static_cast<size_t>(n) * total + i]);
+          y1 = std::max(y1, y[static_cast<size_t>(n) * total + i]);
         }
         EXPECT_EQ(bounds[static_cast<size_t>(4 * block) * total + i], x0);
         EXPECT_EQ(bounds[static_cast<size_t>(4 * block + 1) * total + i], x1);
+        EXPECT_EQ(bounds[static_cast<size_t>(4 * block + 2) * total + i], y0);
+        EXPECT_EQ(bounds[static_cast<size_t>(4 * block + 3) * total + i], y1);
         bool every_step_apart = true;
         for (int n = begin; n < end; ++n) {
           const size_t a = static_cast<size_t>(n) * total + i, c = static_cast<size_t>(n) * total + j;
