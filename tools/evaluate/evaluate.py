@@ -79,7 +79,8 @@ def parse_args(argv):
                     "networks (tools/evaluate/network_family.py; quick: seeds 1 and 3, 12 runs "
                     "per variant; full: seeds 1-4; violations: priority-junction grid and rand nets "
                     "where a seeded 30 %% of cars and trucks ignore right of way, seeds 5 and 6, "
-                    "8 runs), every vehicle an ego, tuning and held-out "
+                    "8 runs; violations-full: seeds 5-9, 5 and 7 tuning, 20 runs), every vehicle an ego, "
+                    "tuning and held-out "
                     "sets side by side; default variants: ours and observable")
     ap.add_argument("--family-time-limit", type=int, default=3600,
                     help="seconds one family run may take before it is stopped (default 3600)")

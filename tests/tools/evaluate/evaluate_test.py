@@ -459,6 +459,13 @@ class ViolationFamilyTest(unittest.TestCase):
         self.assertEqual({(n.seed, n.split) for n in nets}, {(5, "tuning"), (6, "held-out")})
         self.assertTrue(all(n.violations for n in nets))
         self.assertFalse(any(n.violations for n in network_family.family("full")))
+        # Seeds added later join a set and never move one: 5 and 7 tune, 6, 8 and 9 judge.
+        full = network_family.family("violations-full")
+        self.assertEqual({(n.seed, n.split) for n in full},
+                         {(5, "tuning"), (6, "held-out"), (7, "tuning"), (8, "held-out"),
+                          (9, "held-out")})
+        self.assertTrue(set(nets) < set(full))
+        self.assertEqual(len(full), 20)
         for kind in network_family.VIOLATION_KINDS:
             args = network_family.netgenerate_args(kind, 6)
             self.assertIn("priority", args)
