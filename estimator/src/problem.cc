@@ -228,11 +228,18 @@ double CurveAccel(double v, const core::Parabola& centre, const Params& p) {
 
 // The acceleration of the reference hypothesis: the current one, or lower where the caller
 // gives a lower expected one (Params::expected_accel_reference) or the lane's curve asks for
-// less speed (Params::curve_speed_reference).
+// less speed (Params::curve_speed_reference); higher where the vehicle brakes harder than any
+// reason to brake that the caller knows (Params::release_unexplained_braking).
 double ReferenceAccel(const ObjectState& s, const core::Parabola& centre, const Params& p) {
-  double a = s.accel_mps2;
-  if (p.expected_accel_reference && s.expected_accel_mps2) a = std::fmin(a, *s.expected_accel_mps2);
-  return std::fmin(a, CurveAccel(s.speed_mps, centre, p));
+  const double expected = p.expected_accel_reference && s.expected_accel_mps2
+                              ? *s.expected_accel_mps2
+                              : HUGE_VAL;
+  const double curve = CurveAccel(s.speed_mps, centre, p);
+  if (p.release_unexplained_braking && s.braking_causes_known) {
+    const double asked = std::fmin(0.0, std::fmin(expected, curve));
+    if (s.accel_mps2 < asked) return asked;
+  }
+  return std::fmin(s.accel_mps2, std::fmin(expected, curve));
 }
 
 // The path part of the scores: d_path (the lateral part of d_str) and c_com * c_cou.

@@ -25,6 +25,7 @@ void WriteHeight(std::ostream& out, const std::optional<double>& h) {
 void WriteStateLines(std::ostream& out, const ObjectState& s) {
   if (s.expected_accel_mps2) out << "expected-accel " << *s.expected_accel_mps2 << '\n';
   if (s.route_end_m) out << "route-end " << *s.route_end_m << '\n';
+  if (s.braking_causes_known) out << "braking-causes-known\n";
 }
 
 void WriteLanes(std::ostream& out, const LaneSet& lanes) {
@@ -292,6 +293,10 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       if (!state || pedestrian)
         throw InputError(r.where + ": 'route-end' must follow an ego or a vehicle");
       state->route_end_m = r.Num();
+    } else if (kind == "braking-causes-known") {
+      if (!state || pedestrian)
+        throw InputError(r.where + ": 'braking-causes-known' must follow an ego or a vehicle");
+      state->braking_causes_known = true;
     } else if (kind == "expected-accel") {
       if (!state)
         throw InputError(r.where +
@@ -342,7 +347,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
     } else {
       throw InputError(r.where + ": unknown record '" + kind +
                        "' (euler-update-step, ego, vehicle, pedestrian, lane, stop, footway, "
-                       "expected-accel, route-end, type, carriage)");
+                       "expected-accel, route-end, braking-causes-known, type, carriage)");
     }
     if (r.next != r.words.size()) throw InputError(r.where + ": too many values");
   }

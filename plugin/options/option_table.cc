@@ -171,6 +171,11 @@ void OptionTable::Estimator(DriverOptions* o) {
       "bench/RESULTS.md): a vehicle whose way from back to front a turn bends (a bus or truck "
       "in a junction turn) is a chain of boxes along that way, not one box along SUMO's angle "
       "(plugin/README.md, \"Bodies in a turn\")")(
+      "release-braking", po::bool_switch(&raw.release_braking),
+      "experimental (ours, off by default): a vehicle (the ego too) that brakes harder than its "
+      "leader, its stop line and its lane's curve ask is expected to release its brake (its "
+      "reference holds its speed, or what those ask) instead of braking on for the whole "
+      "horizon (estimator Params::release_unexplained_braking)")(
       "no-car-following", po::bool_switch(&raw.no_car_following),
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(

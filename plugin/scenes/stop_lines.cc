@@ -41,4 +41,18 @@ std::optional<StopLine> StopLineOf(const VehicleOnLane& v, const std::string& id
   return std::nullopt;
 }
 
+bool MayYieldAhead(const VehicleOnLane& v, const SceneConfig& config, RoadNetwork* network) {
+  const double to_end = network->Lane(v.lane).length_m - v.lane_position_m;
+  if (to_end > ReachAhead(v.speed_mps, config)) return false;
+  int index = v.route_index;
+  const std::string next = NextLaneOf(v, v.lane, network, &index);
+  if (next.empty()) return false;
+  for (const LaneLink& link : network->LinksNow(v.lane)) {
+    if (link.lane != next && link.internal != next) continue;
+    const std::string& st = link.state;
+    return st == "m" || st == "=" || st == "g" || st == "s" || st == "w";
+  }
+  return false;
+}
+
 }  // namespace criticality::plugin

@@ -21,4 +21,11 @@ std::optional<StopLine> StopLineOf(const VehicleOnLane& v, const std::string& id
                                    const SceneConfig& config, RoadNetwork* network,
                                    TrafficView* traffic);
 
+/** Whether the link from the vehicle's lane to its next lane (its route's, or the one it is
+ *  seen to take) lies within its reach and has no priority ('m', '=', 'g', 's', 'w'), with or
+ *  without a foe approaching now: a vehicle there may brake to yield for reasons the scene does
+ *  not hold (SUMO slows its vehicles before such links), so its braking is not read as having
+ *  no cause (ObjectState::braking_causes_known). */
+bool MayYieldAhead(const VehicleOnLane& v, const SceneConfig& config, RoadNetwork* network);
+
 }  // namespace criticality::plugin

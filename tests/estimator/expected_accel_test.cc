@@ -114,5 +114,37 @@ TEST(ExpectedAccel, ThePaperLiteralPresetIgnoresIt) {
   EXPECT_EQ(without.Estimate(scene).p_collision, a.p_collision);
 }
 
+// Params::release_unexplained_braking: the ego at 10 m/s braking at 6 m/s^2 (it stops within
+// about 10 m), a stopped car 16 m ahead (bumpers). Braking on, the reference stops short of
+// it; released, it holds its speed and hits the car within the horizon. Only a caller that knows
+// the ego's reasons to brake (ObjectState::braking_causes_known) releases it, and a known reason
+// (here an expected -6 m/s^2 for the car ahead) keeps the braking.
+TEST(ExpectedAccel, BrakingWithoutAKnownCauseIsReleasedOnlyWhereTheCausesAreKnown) {
+  Scene scene;
+  scene.ego.lanes = bench::StraightThreeLanes();
+  scene.ego.state.speed_mps = 10.0;
+  scene.ego.state.accel_mps2 = -6.0;
+  Vehicle stopped;
+  stopped.id = "stopped";
+  stopped.state.x_m = 0.5 * scene.ego.length_m + 16.0 + 2.25;
+  stopped.length_m = 4.5;
+  scene.vehicles.push_back(stopped);
+  Params release;
+  release.release_unexplained_braking = true;
+  const Result off = Estimator(Params{}).Estimate(scene);
+  const Result unknown = Estimator(release).Estimate(scene);
+  scene.ego.state.braking_causes_known = true;
+  const Result released = Estimator(release).Estimate(scene);
+  const Result default_params = Estimator(Params{}).Estimate(scene);
+  scene.ego.state.expected_accel_mps2 = -6.0;
+  const Result explained = Estimator(release).Estimate(scene);
+  EXPECT_LT(off.p_reference, 0.05);
+  EXPECT_EQ(unknown.p_collision, off.p_collision);  // causes unknown: the paper's reference
+  EXPECT_EQ(default_params.p_collision, off.p_collision);  // the rule is off by default
+  EXPECT_GT(released.p_reference, 0.9);
+  EXPECT_GT(released.p_collision, off.p_collision);
+  EXPECT_LT(explained.p_reference, 0.05);
+}
+
 }  // namespace
 }  // namespace criticality

@@ -96,6 +96,25 @@ TEST(SceneIo, RouteEndsRoundTrip) {
   EXPECT_THROW(ReadScene(bad), InputError);
 }
 
+TEST(SceneIo, BrakingCausesKnownRoundTrips) {
+  Scene scene = testing::RandomScene(6, 0, 0, true);
+  scene.vehicles.resize(2);
+  scene.vehicles[0].id = "a";
+  scene.vehicles[1].id = "b";
+  scene.vehicles[1].state.x_m = 10.0;
+  scene.ego.state.braking_causes_known = true;
+  scene.vehicles[1].state.braking_causes_known = true;
+  std::stringstream file;
+  WriteScene(file, scene);
+  const Scene back = ReadScene(file);
+  EXPECT_TRUE(back.ego.state.braking_causes_known);
+  EXPECT_FALSE(back.vehicles[0].state.braking_causes_known);
+  EXPECT_TRUE(back.vehicles[1].state.braking_causes_known);
+  std::istringstream bad(
+      "criticality-scene 1\npedestrian p 0 0 0 1 0 0 0 .5 .5\nbraking-causes-known\n");
+  EXPECT_THROW(ReadScene(bad), InputError);
+}
+
 TEST(SceneIo, EulerUpdateStepRoundTrips) {
   Scene scene = testing::RandomScene(6, 1, 0, true);
   scene.euler_update_step_s = 0.25;

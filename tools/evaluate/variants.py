@@ -38,6 +38,10 @@ VARIANTS = [
     Variant("no-yield-stops",
             "ours without yield lines where SUMO has a foe approaching (--no-yield-stops)",
             {"act": "warn", "no-yield-stops": "true"}),
+    Variant("release-braking",
+            "ours with braking that no known cause asks for released in the reference "
+            "(--release-braking)",
+            {"act": "warn", "release-braking": "true"}),
     Variant("no-crossing-stops",
             "ours without a waiting pedestrian's stop where its crossing begins (--no-crossing-stops)",
             {"act": "warn", "no-crossing-stops": "true"}),

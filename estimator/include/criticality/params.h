@@ -296,6 +296,20 @@ struct Params {
    *  5.6 m right turn at 7.2 m/s); a reference that kept accelerating there left the turn wide
    *  and crossed the exit road's other lane. Project choice; paper-literal: false. */
   bool curve_speed_reference{true};
+  /** With true, the reference of a vehicle (the ego too) whose caller knows its reasons to
+   *  brake (ObjectState::braking_causes_known) and that brakes harder than all of them ask (its
+   *  expected_accel_mps2, the curve of its lane ahead, and otherwise holding its speed) releases
+   *  to what they ask: the reference acceleration is min(0, expected, curve) instead of the
+   *  current one. The paper's reference keeps the current acceleration for the whole horizon;
+   *  SUMO's drivers decide afresh every step, and at 1 s steps an acceleration is one step's
+   *  average: a car that slowed for a junction turn (-4.5 m/s^2 over the last second, at turn
+   *  speed now) was predicted to stop within 1.9 s in the junction, short of the crossing lane
+   *  where it hit the oncoming car 1 s later (bench/RESULTS.md, 2026-12-04, "braking that has
+   *  no cause"). A vehicle that brakes for a stop line keeps its stopping profile (the mixture
+   *  of stop_obligations); only the branch that drives on is released. An experiment, off:
+   *  judged on the violation family's held-out set it warned no collision more (bench/RESULTS.md,
+   *  2026-12-04, "braking that has no cause"). */
+  bool release_unexplained_braking{false};
   /** See curve_speed_reference. 5.5 m/s^2: the lateral acceleration from which SUMO's
    *  netconvert sets turning speeds (junctions.limit-turn-speed), above what drivers choose in
    *  comfort (about 0.3-0.4 g), so that only a speed that is too high for any normal driving

@@ -72,6 +72,12 @@ struct ObjectState {
    *  of its route in a traffic simulation, where SUMO removes it. From there on its hypotheses
    *  collide with nothing (Params::route_end_leaves). Vehicles and the ego only; >= 0. */
   std::optional<double> route_end_m;
+  /** The caller gave every reason to brake that it knows of this vehicle: its leader and its
+   *  stop line (expected_accel_mps2, Vehicle::stop_line), with its lane's curve, which the
+   *  estimator reads itself. A traffic simulation's scene does. With
+   *  Params::release_unexplained_braking, a vehicle that brakes harder than all of them ask is
+   *  expected to release its brake rather than brake on. Vehicles and the ego only. */
+  bool braking_causes_known{false};
 };
 
 /** What kind of road user a vehicle is: its motion model and the range of its hypotheses

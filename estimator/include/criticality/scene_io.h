@@ -16,6 +16,7 @@
  *    footway
  *    expected-accel A
  *    route-end D
+ *    braking-causes-known
  *    type car|motorcycle|bicycle|heavy|rail [mass M] [accel A] [decel D] [emergency-decel E] [max-speed V]
  *    carriage x y yaw yaw_rate length width LANES(0|1)
  *  `lane` lines belong to the ego, vehicle or carriage line before them (for a vehicle or a
@@ -26,7 +27,8 @@
  *  `footway` line (Pedestrian::stays_on_footway) to the pedestrian line before it; an
  *  `expected-accel` line sets ObjectState::expected_accel_mps2 of the ego, vehicle or
  *  pedestrian line before it (absent: not set), a `route-end` line the ObjectState::route_end_m
- *  of the ego or vehicle line before it. A lane line ending in `straight-to-middle` sets
+ *  of the ego or vehicle line before it, a `braking-causes-known` line sets
+ *  ObjectState::braking_causes_known of the ego or vehicle line before it. A lane line ending in `straight-to-middle` sets
  *  Lane::straight_to_middle. An `euler-update-step` line (anywhere after the header; absent: 0)
  *  sets Scene::euler_update_step_s, a `bodies-on-path` line (likewise; absent: false)
  *  Scene::bodies_on_path. Version 1 throughout: `type` and `carriage` lines were added to it,

@@ -159,6 +159,27 @@ TEST(SceneStage, WithoutYieldStopsOnlyLightsAndStopSignsAreStopLines) {
   EXPECT_EQ(b.EgoOf(2).stop_line->reason, StopLine::Reason::kYield);
 }
 
+// Params::release_unexplained_braking reads a vehicle's braking as having no cause only where
+// the scene holds every cause it could have: not before a link without priority, where SUMO
+// slows its vehicles to yield whether or not a foe approaches now.
+TEST(SceneStage, BrakingCausesAreKnownExceptBeforeALinkWithoutPriority) {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 100, 0, 1);
+  w.AddEdge("F", 100, 0, 200, 0, 1);
+  w.AddEdge("G", 0, 10, 100, 10, 1);
+  w.AddEdge("H", 100, 10, 200, 10, 1);
+  w.AddLink("E_0", "F_0", "m", /*has_foe=*/false);
+  w.AddLink("G_0", "H_0", "M", /*has_foe=*/false);
+  w.AddVehicle("minor_near", 85, 0, 90, 10, "E_0", 85, {"E", "F"});
+  w.AddVehicle("minor_far", 10, 0, 90, 10, "E_0", 10, {"E", "F"});
+  w.AddVehicle("major_near", 85, 10, 90, 10, "G_0", 85, {"G", "H"});
+  SceneStage stage = Stage(w);
+  const SceneBatch b = stage.Run(Observe(w, {"minor_near", "minor_far", "major_near"}));
+  EXPECT_FALSE(b.EgoOf(0).state.braking_causes_known);  // 15 m from a minor link
+  EXPECT_TRUE(b.EgoOf(1).state.braking_causes_known);   // the link is beyond its reach
+  EXPECT_TRUE(b.EgoOf(2).state.braking_causes_known);   // a major link: nothing to yield to
+}
+
 TEST(SceneStage, AFollowerExpectsToStopBehindALeaderThatMustStop) {
   FakeSumoWorld w;
   w.AddEdge("E", 0, 0, 200, 0, 1);
