@@ -304,11 +304,10 @@ struct Params {
    *  SUMO's drivers decide afresh every step, and at 1 s steps an acceleration is one step's
    *  average: a car that slowed for a junction turn (-4.5 m/s^2 over the last second, at turn
    *  speed now) was predicted to stop within 1.9 s in the junction, short of the crossing lane
-   *  where it hit the oncoming car 1 s later (bench/RESULTS.md, 2026-12-04, "braking that has
-   *  no cause"). A vehicle that brakes for a stop line keeps its stopping profile (the mixture
-   *  of stop_obligations); only the branch that drives on is released. An experiment, off:
-   *  judged on the violation family's held-out set it warned no collision more (bench/RESULTS.md,
-   *  2026-12-04, "braking that has no cause"). */
+   *  where it hit the oncoming car 1 s later. A vehicle that brakes for a stop line keeps its
+   *  stopping profile (the mixture of stop_obligations); only the branch that drives on is
+   *  released. An experiment, off: judged on the violation family's held-out set it warned no
+   *  collision more (bench/RESULTS.md, 2026-12-04, "braking that has no cause"). */
   bool release_unexplained_braking{false};
   /** See curve_speed_reference. 5.5 m/s^2: the lateral acceleration from which SUMO's
    *  netconvert sets turning speeds (junctions.limit-turn-speed), above what drivers choose in
