@@ -32,6 +32,12 @@ void CheckConfigFile(const std::string& path, const po::options_description& all
     const auto first = line.find_first_not_of(" \t\r");
     if (first == std::string::npos || line[first] == '#') continue;
     const auto eq = line.find('=');
+    if (eq == std::string::npos && line[first] == '<') {
+      // An XML file (a SUMO configuration, a route or network file) given as our own.
+      throw std::invalid_argument(where + "this is XML, not a scenario file ('name = value' "
+                                  "lines); a SUMO configuration (.sumocfg) is run with -c " +
+                                  path + " (or named in a scenario file: sumo-config = FILE)");
+    }
     if (eq == std::string::npos)
       throw std::invalid_argument(where + "expected 'name = value', got '" + line + "'");
     std::string name = line.substr(first, eq - first);

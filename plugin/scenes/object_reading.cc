@@ -76,6 +76,13 @@ std::optional<double> ChangedLanesHeading(const WayLine& way, double length_m) {
   return ChordYaw(way, length_m);
 }
 
+// A class can be seen, a vType's limits cannot: the class's own (estimator/ALGORITHM.md).
+VehicleType SeenType(const VehicleType& type) {
+  VehicleType seen;
+  seen.road_user = type.road_user;
+  return seen;
+}
+
 }  // namespace
 
 ObjectReader::ObjectReader(const SceneConfig& config, double step_s, RoadNetwork* network,
@@ -146,12 +153,7 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.not_a_road_user = !road_user;
   const VehicleTypeReport& type = traffic_->TypeOf(o.vehicle_type);
   s.type = TypeFrom(type, road_user.value_or(RoadUser::kCar));
-  // A class can be seen, a vType's limits cannot: the class's own (estimator/ALGORITHM.md).
-  if (config_.observable_only) {
-    VehicleType seen;
-    seen.road_user = s.type.road_user;
-    s.type = seen;
-  }
+  if (config_.observable_only) s.type = SeenType(s.type);
   s.stopped = (o.stop_state & kStopped) != 0;
   s.parked = (o.stop_state & kParking) != 0;
   // A long body: its first box is the vehicle, the rest carriages behind it (carriages.h).
@@ -223,9 +225,11 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   last.in_junction = IsInternal(o.lane);
   if (held) ++conditioned_;  // Plausible below does not count this read again
   s.lane = o.lane;
+  // SUMO takes a vehicle parked with parking="true" (or in a parking area) off its lane: it
+  // reports no lane for it (libsumo 1.15), and it stands beside the road.
+  if (s.parked) s.off_road = s.lane.empty() || OffItsLane(o);
   if (s.lane.empty()) return s;
   s.edge = network_->Lane(s.lane).edge;
-  if (s.parked) s.off_road = OffItsLane(o);
   s.leader = LeaderOf(o.id, s.state.speed_mps);  // expected_accel_mps2: ExpectCarFollowing
   // SUMO's leader is looked for along the route: seen, only the one ahead in its own lane.
   if (config_.observable_only && s.leader &&

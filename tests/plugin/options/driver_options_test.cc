@@ -266,6 +266,11 @@ TEST(DriverOptions, ConfigFileErrorsNameFileAndLine) {
   EXPECT_NE(ErrorOf({"--config", path.c_str(), "--connect", "h:1", "--output", "x"})
                 .find(path + ":2: expected 'name = value'"),
             std::string::npos);
+  // A .sumocfg given as the scenario file: the error names the option that runs it.
+  std::ofstream(path) << "<configuration>\n  <input/>\n</configuration>\n";
+  const std::string xml = ErrorOf({"--config", path.c_str(), "--connect", "h:1", "--output", "x"});
+  EXPECT_NE(xml.find(path + ":1: this is XML"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("-c " + path), std::string::npos) << xml;
   std::ofstream(path) << "ego = e\nbogus-option = 1\n";
   EXPECT_NE(ErrorOf({"--config", path.c_str(), "--connect", "h:1", "--output", "x"})
                 .find(path + ":2: unknown option 'bogus-option'"),

@@ -402,17 +402,20 @@ TEST(SceneStage, AParkedVehicleIsNoEgoAndBesideTheRoadNoObject) {
   // Stopped at a bus stop: a standing object, and still an ego (it will pull out).
   w.AddVehicle("bus", 110, 0.0, 90, 0, "E_0", 110, {"E"}).stop_state = 1 | 16;
   w.AddVehicle("ship", 60, 30.0, 90, 3).vehicle_class = "ship";  // on a waterway nearby
+  // Parked with parking="true": SUMO reports it on no lane (libsumo 1.15), beside the road.
+  w.AddVehicle("taken_off", 80, -4.0, 90, 0).stop_state = 2;
   SceneStage stage = Stage(w);
-  const SceneBatch b = stage.Run(Observe(w, {"ego", "beside", "on_lane", "bus", "ship"}));
+  const SceneBatch b =
+      stage.Run(Observe(w, {"ego", "beside", "on_lane", "bus", "ship", "taken_off"}));
   std::vector<std::string> egos;
   for (size_t k = 0; k < b.scenes.size(); ++k) egos.push_back(b.EgoOf(k).id);
   EXPECT_EQ(egos, (std::vector<std::string>{"ego", "bus"}));
   std::vector<std::string> objects;
   for (const Vehicle& v : b.scenes[0].vehicles) objects.push_back(v.id);
   EXPECT_EQ(objects, (std::vector<std::string>{"bus", "on_lane"}));
-  EXPECT_EQ(stage.parked_objects(), 1);
+  EXPECT_EQ(stage.parked_objects(), 2);
   EXPECT_EQ(stage.other_class_objects(), 1);
-  EXPECT_EQ(stage.parked_egos(), 2);
+  EXPECT_EQ(stage.parked_egos(), 3);
 }
 
 TEST(SceneStage, AHeadingJumpSumoCouldNotDriveIsReplacedByTheLanesYawRate) {
