@@ -451,6 +451,8 @@ std::string HypothesisJson(const EscapeRoute& e, bool reference) {
   for (size_t n = 0; n < e.x_m.size(); ++n) o << (n ? "," : "") << e.x_m[n];
   o << "],\"y\":[";
   for (size_t n = 0; n < e.y_m.size(); ++n) o << (n ? "," : "") << e.y_m[n];
+  o << "],\"yaw\":[" << std::setprecision(3);
+  for (size_t n = 0; n < e.yaw_rad.size(); ++n) o << (n ? "," : "") << e.yaw_rad[n];
   o << "]}";
   return o.str();
 }

@@ -73,9 +73,9 @@ struct HypothesisSet {
    *  they collide with nothing. +inf: it stays. */
   double leave_distance{HUGE_VAL};
   /** Half the step of a simulator's Euler position update (Scene::euler_update_step_s / 2), 0
-   *  for continuous motion: each pose is moved along the course by (v - v0) * position_lead,
-   *  which puts it where that update puts the object (ShiftAlongCourse in
-   *  trajectory_generation.h). Per set, so that a batch may mix scenes. */
+   *  for continuous motion: each pose is moved by (v - v0) * position_lead along the way the
+   *  object drives, which puts it where that update puts the object (ShiftAlongCourse and
+   *  ShiftAlongPath in trajectory_generation.h). Per set, so that a batch may mix scenes. */
   double position_lead{0.0};
   /** Its box is centred on the chord of its path (Scene::bodies_on_path): each stored pose's
    *  centre lies PathSagitta(h, course curvature) toward the turn's centre from the model's,

@@ -35,6 +35,32 @@ CRIT_HD void ShiftAlongCourse(double lead_s, double v, double v0, double cx, dou
   *y += cy * d;
 }
 
+/** The largest turn of the course over the shift of ShiftAlongPath (rad). */
+constexpr double kMaxShiftTurnRad = 1.5707963267948966;
+
+/** ShiftAlongCourse for a vehicle whose way curves (curvature kappa, signed: positive to the
+ *  left, BodyCurvature of its yaw rate and speed): the simulator's pose lies on the way it
+ *  drives, (v - v0) lead along it from the continuous pose, which on an arc of curvature kappa
+ *  is sin(phi) / kappa along the course and (1 - cos(phi)) / kappa = 2 sin^2(phi / 2) / kappa
+ *  to the side of it, phi = kappa (v - v0) lead (at most kMaxShiftTurnRad). Shifted along the
+ *  course alone, a car braking through a right turn at 1 s steps was put out to the left of
+ *  its way, into the opposite lane (bench/RESULTS.md, 2026-12-04, "the Euler update in a
+ *  turn"). kappa = 0: ShiftAlongCourse exactly. */
+CRIT_HD void ShiftAlongPath(double lead_s, double v, double v0, double kappa, double cx,
+                            double cy, double* x, double* y) {
+  const double d = (v - v0) * lead_s;
+  const double phi = Clamp(kappa * d, -kMaxShiftTurnRad, kMaxShiftTurnRad);
+  if (phi == 0.0) {
+    *x += cx * d;
+    *y += cy * d;
+    return;
+  }
+  const double r = d / phi, h = std::sin(0.5 * phi);
+  const double along = std::sin(phi) * r, across = 2.0 * h * h * r;
+  *x += cx * along - cy * across;
+  *y += cy * along + cx * across;
+}
+
 /** Initial steering angle consistent with the current yaw rate (kinematic estimate). */
 CRIT_HD double InitialSteer(const HypothesisSet& h, const ControllerLimits& c) {
   if (h.v0 < 0.1) return 0.0;
@@ -165,7 +191,10 @@ CRIT_HD void StorePose(const HypothesisSet& h, const StepContext& c, const Simul
     *y = 0.0;
   } else {
     double px = s.x, py = s.y;
-    if (h.position_lead > 0.0) ShiftAlongCourse(h.position_lead, s.v, h.v0, cx, cy, &px, &py);
+    if (h.position_lead > 0.0) {
+      ShiftAlongPath(h.position_lead, s.v, h.v0, BodyCurvature(s.yaw_rate, s.v), cx, cy, &px,
+                     &py);
+    }
     if (h.body_on_path && !h.on_track) {
       const double e = PathSagitta(h, BodyCurvature(s.yaw_rate, s.v));
       px -= cy * e;

@@ -525,10 +525,21 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
 
       // StorePose
       V px = nx, py = ny;
-      if (h.position_lead > 0.0) {
+      if (h.position_lead > 0.0) {  // core::ShiftAlongPath of core::BodyCurvature
         const V shift = hn::Mul(hn::Sub(nv, hn::Set(d, h.v0)), hn::Set(d, h.position_lead));
-        px = hn::Add(px, hn::Mul(course_xe, shift));
-        py = hn::Add(py, hn::Mul(course_ye, shift));
+        const V kappa = hn::IfThenElse(hn::Gt(nv, one), hn::Div(nyr, nv), hn::Mul(nyr, nv));
+        const V phi = ClampV(hn::Mul(kappa, shift), hn::Set(d, -core::kMaxShiftTurnRad),
+                             hn::Set(d, core::kMaxShiftTurnRad));
+        const auto straight = hn::Eq(phi, zero);
+        const V r = hn::Div(shift, hn::IfThenElse(straight, one, phi));
+        V s_phi, c_phi, s_half, c_half;
+        SinCos(d, phi, &s_phi, &c_phi);
+        SinCos(d, hn::Mul(hn::Set(d, 0.5), phi), &s_half, &c_half);
+        const V along = hn::IfThenElse(straight, shift, hn::Mul(s_phi, r));
+        const V across =
+            hn::IfThenElseZero(hn::Not(straight), hn::Mul(hn::Mul(hn::Mul(two, s_half), s_half), r));
+        px = hn::Add(px, hn::Sub(hn::Mul(course_xe, along), hn::Mul(course_ye, across)));
+        py = hn::Add(py, hn::Add(hn::Mul(course_ye, along), hn::Mul(course_xe, across)));
       }
       if (h.body_on_path) {  // core::PathSagitta of core::BodyCurvature, across the course
         const double c = 2.0 * h.half_length, limit = 2.0 / c;

@@ -71,6 +71,45 @@ TEST(EulerUpdate, BrakingVehicleStopsWhereSumosEulerUpdateStopsIt) {
   EXPECT_NEAR(x[199], v0 * v0 / (2.0 * decel), 0.05);
 }
 
+// Braking through a turn: SUMO moves the vehicle along its way by its speed at the end of each
+// step, so its pose lies on the way it drives, only behind where continuous braking gets. Each
+// step's part of the shift keeps that step's course (core::AccumulateLead). Shifted by the whole
+// speed change along the heading it has now, as before, a car braking through a right turn at
+// 1 s steps was put up to 1.4 m out to the left of its way (into the opposite lane, where a
+// waiting car "collided" with it: bench/RESULTS.md, "the Euler update in a turn").
+TEST(EulerUpdate, BrakingThroughATurnStaysOnTheWayItDrives) {
+  const double v0 = 11.0, decel = 4.5, dt = 1.0;
+  core::HypothesisSet h = BrakingVehicle(v0, decel);
+  h.section[0][0] = core::Parabola{-0.05, 0.0, 0.0};  // a right turn, radius 10 m at x = 0
+  h.reference_path = h.section[0][0];
+  core::SimulationConfig cfg;
+  cfg.tau = 0.02;
+  cfg.n_steps = 100;  // 2 s
+  std::vector<double> cx(100), cy(100), cyaw(100), x(100), y(100), yaw(100);
+  core::SimulateHypothesis(h, cfg, 0, 0, cx.data(), cy.data(), cyaw.data());  // continuous
+  h.position_lead = 0.5 * dt;
+  core::SimulateHypothesis(h, cfg, 0, 0, x.data(), y.data(), yaw.data());
+  // It turns: the heading changes by more than 35 degrees within the 2 s.
+  ASSERT_LT(cyaw[99], -0.6);
+  const std::vector<double> sumo = SumoEulerBraking(v0, decel, dt, 2);
+  for (int k = 1; k <= 2; ++k) {
+    const int n = k * 50 - 1;
+    // The distance from the continuous way (its poses, 2 cm apart) ...
+    double off = HUGE_VAL;
+    int nearest = 0;
+    for (int m = 0; m < 100; ++m) {
+      const double dm = std::hypot(x[n] - cx[m], y[n] - cy[m]);
+      if (dm < off) off = dm, nearest = m;
+    }
+    EXPECT_LT(off, 0.1) << "after " << k << " s";
+    // ... and how far along it: SUMO's distance (9 m after 1 s, 6.5 m more after 2 s), within
+    // what the way's 2 cm sampling and its arc against the straight steps leave.
+    double along = std::hypot(cx[0], cy[0]) + 0.5 * v0 * cfg.tau;  // to the first pose
+    for (int m = 1; m <= nearest; ++m) along += std::hypot(cx[m] - cx[m - 1], cy[m] - cy[m - 1]);
+    EXPECT_NEAR(along, sumo[k - 1], 0.3) << "after " << k << " s";
+  }
+}
+
 TEST(EulerUpdate, PedestrianShiftIsAlongItsHeading) {
   // A walker at 1.2 m/s, heading 90 degrees, stopping at 1.2 m/s^2: SUMO's update with 1 s
   // steps leaves it where it stands (its speed after the step is 0); continuous motion 0.6 m on.

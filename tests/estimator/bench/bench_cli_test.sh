@@ -37,6 +37,17 @@ dir=$(mktemp -d)
 check "--save-scenes writes replayable scene files" \
   "$bench" --scene-file "$dir/stopped-car-ttc-1.50.scene" --repeat 1 --warmup 0
 rm -rf "$dir"
+# --paths-json: every listed hypothesis has as many headings as positions (a picture draws the
+# boxes, a trace reads how the body turns against its way).
+dir=$(mktemp -d)
+"$bench" --scene S1 --paths-json "$dir/p.json" --paths 2 > /dev/null
+check "--paths-json gives x, y and yaw of each step" python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+hs = d["most_probable"] + d["colliding"]
+assert hs and all(len(h["x"]) == len(h["y"]) == len(h["yaw"]) == 100 for h in hs)
+' "$dir/p.json"
+rm -rf "$dir"
 # --fleet: every scene file of a folder in one batch; its mean p_cra is the mean of the scenes
 # estimated one by one.
 data=$(cd "$(dirname "$0")/../data" && pwd)
