@@ -446,19 +446,33 @@ struct StopObligation {
   double distance_m{0.0};  ///< front bumper to the line
 };
 
-// The obligation of `v` when it counts: enabled, naturalistic scoring, and complying is
-// consistent with what the vehicle does (the deceleration it needs, v^2 / 2d, is comfortable,
-// or it already brakes at least half that hard).
-std::optional<StopObligation> CredibleStop(const Vehicle& v, const Params& p) {
-  if (!v.stop_line || !p.stop_obligations || !Naturalistic(p) || p.profiles < 4) return {};
-  const double d = v.stop_line->distance_m;
-  const double speed = v.state.speed_mps;
+// The obligation of a vehicle (or the ego) in `state` with `line` when it counts: enabled,
+// naturalistic scoring, and complying is consistent with what the vehicle does (the
+// deceleration it needs, v^2 / 2d, is comfortable, or it already brakes at least half that
+// hard).
+std::optional<StopObligation> CredibleStop(const std::optional<StopLine>& line,
+                                           const ObjectState& state, const Params& p) {
+  if (!line || !p.stop_obligations || !Naturalistic(p) || p.profiles < 4) return {};
+  const double d = line->distance_m;
+  const double speed = state.speed_mps;
   if (speed <= 0.0) return StopObligation{d};
   const double needed = speed * speed / (2.0 * d);  // +inf at the line
-  if (needed <= p.stop_comfortable_decel_mps2 || -v.state.accel_mps2 >= 0.5 * needed) {
+  if (needed <= p.stop_comfortable_decel_mps2 || -state.accel_mps2 >= 0.5 * needed) {
     return StopObligation{d};
   }
   return {};
+}
+
+// Params::ego_stop_obligations: the ego's reference acceleration `a_ref`, or the constant
+// deceleration that stops its front at a credible stop line (holding it where it stands) where
+// that is lower.
+double EgoReferenceWithStop(const Ego& ego, double a_ref, const Params& p) {
+  if (!p.ego_stop_obligations) return a_ref;
+  const std::optional<StopObligation> stop = CredibleStop(ego.stop_line, ego.state, p);
+  if (!stop) return a_ref;
+  const double v = ego.state.speed_mps;
+  const double stopping = v <= 0.0 ? 0.0 : -v * v / (2.0 * stop->distance_m);
+  return std::fmin(a_ref, stopping);
 }
 
 // Where a vehicle comes to rest (or how far it gets within `limit_s`) under a one-track profile
@@ -699,7 +713,8 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     SetPose(scene.ego.state, scene.ego.length_m, scene.ego.width_m, &h);
     SetRouteEnd(scene.ego.state, params, &h);
     h.seam_speed = SeamSpeedOf(h.vehicle, type, params);
-    const double a_ref = ReferenceAccel(scene.ego.state, ego_fitted.own->Centre(), params);
+    const double a_ref = EgoReferenceWithStop(
+        scene.ego, ReferenceAccel(scene.ego.state, ego_fitted.own->Centre(), params), params);
     const std::vector<ProfileScore> profiles = SetVehicleProfiles(
         params, a_ref, RangeOf(type, params), &h, &pb.ego_profile_accel, &pb.ego_profile_slip);
     const bool track = TrackBound(type, params);
@@ -755,7 +770,7 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     info.lane = static_cast<int>(lane);
     const FittedLanes fitted = FitLanes(lanes, where + ".lanes", params);
     const double a_ref = ReferenceAccel(v.state, fitted.own->Centre(), params);
-    const std::optional<StopObligation> stop = CredibleStop(v, params);
+    const std::optional<StopObligation> stop = CredibleStop(v.stop_line, v.state, params);
     std::vector<double> accel;
     int stop_profile = -1;
     const std::vector<ProfileScore> profiles =

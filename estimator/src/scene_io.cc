@@ -128,6 +128,10 @@ struct LineReader {
   }
 };
 
+void WriteStop(std::ostream& out, const std::optional<StopLine>& stop) {
+  if (stop) out << "stop " << StopReasonName(stop->reason) << ' ' << stop->distance_m << '\n';
+}
+
 }  // namespace
 
 void WriteScene(std::ostream& out, const Scene& scene) {
@@ -144,6 +148,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
   WriteStateLines(out, scene.ego.state);
   WriteType(out, scene.ego.type);
   WriteLanes(out, scene.ego.lanes);
+  WriteStop(out, scene.ego.stop_line);
   for (const Vehicle& v : scene.vehicles) {
     out << "vehicle " << v.id;
     WriteState(out, v.state);
@@ -152,10 +157,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
     out << ' ' << (v.lanes ? 1 : 0) << '\n';
     WriteStateLines(out, v.state);
     if (v.lanes) WriteLanes(out, *v.lanes);
-    if (v.stop_line) {
-      out << "stop " << StopReasonName(v.stop_line->reason) << ' ' << v.stop_line->distance_m
-          << '\n';
-    }
+    WriteStop(out, v.stop_line);
     WriteType(out, v.type);
     for (const Carriage& c : v.carriages) {
       out << "carriage " << c.x_m << ' ' << c.y_m << ' ' << c.yaw_rad << ' ' << c.yaw_rate_radps
@@ -180,6 +182,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
   VehicleType* type = nullptr;   // of the last ego or vehicle, for 'type'
   Vehicle* vehicle = nullptr;    // the last vehicle read, for its 'stop' and 'carriage' lines
   Pedestrian* pedestrian = nullptr;  // the last pedestrian read, for its 'footway' line
+  bool after_ego = false;  // the last object read is the ego (for its 'stop' line)
   bool header = false, ego = false;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
@@ -214,6 +217,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       vehicle = nullptr;
       pedestrian = nullptr;
       ego = true;
+      after_ego = true;
     } else if (kind == "vehicle") {
       Vehicle v;
       v.id = r.Word();
@@ -229,6 +233,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       type = &scene.vehicles.back().type;
       vehicle = &scene.vehicles.back();
       pedestrian = nullptr;
+      after_ego = false;
     } else if (kind == "pedestrian") {
       Pedestrian p;
       p.id = r.Word();
@@ -240,6 +245,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       state = &scene.pedestrians.back().state;  // for 'expected-accel' (not 'route-end')
       type = nullptr;
       vehicle = nullptr;
+      after_ego = false;
       pedestrian = &scene.pedestrians.back();
     } else if (kind == "type") {
       if (!type) throw InputError(r.where + ": 'type' must follow an ego or a vehicle");
@@ -303,7 +309,8 @@ Scene ReadScene(std::istream& in, const std::string& source) {
                          ": 'expected-accel' must follow an ego, a vehicle or a pedestrian");
       state->expected_accel_mps2 = r.Num();
     } else if (kind == "stop") {
-      if (!vehicle) throw InputError(r.where + ": 'stop' must follow a vehicle");
+      if (!vehicle && !after_ego)
+        throw InputError(r.where + ": 'stop' must follow an ego or a vehicle");
       const std::string reason = r.Word();
       StopLine stop;
       if (reason == "red") {
@@ -316,7 +323,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
         throw InputError(r.where + ": stop reason '" + reason + "' must be red, yellow or yield");
       }
       stop.distance_m = r.Num();
-      vehicle->stop_line = stop;
+      (vehicle ? vehicle->stop_line : scene.ego.stop_line) = stop;
     } else if (kind == "lane") {
       if (!lanes)
         throw InputError(r.where +

@@ -292,6 +292,11 @@ void ValidateScene(const Scene& scene, const Params& /*params*/) {
   ValidateState("scene.ego.state", scene.ego.state);
   ValidateSize("scene.ego", scene.ego.length_m, scene.ego.width_m, scene.ego.height_m);
   ValidateType("scene.ego.type", scene.ego.type);
+  if (const auto& stop = scene.ego.stop_line) {
+    RequireFinite("scene.ego.stop_line.distance_m", stop->distance_m);
+    if (stop->distance_m < 0.0)
+      Fail("scene.ego.stop_line.distance_m", stop->distance_m, "must be >= 0");
+  }
   for (size_t i = 0; i < scene.vehicles.size(); ++i) {
     const Vehicle& v = scene.vehicles[i];
     const std::string where = ObjectName("scene.vehicles", i, v.id);

@@ -175,9 +175,11 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_road_model) p.road_model = false;
   if (raw.no_car_following) p.expected_accel_reference = false;
   if (raw.release_braking) p.release_unexplained_braking = true;
+  if (raw.ego_stops) p.ego_stop_obligations = true;
   if (raw.no_crossing_obligations) o->scenes.crossing_obligations = false;
   if (raw.no_crossing_stops) o->scenes.crossing_stops = false;
   if (raw.no_yield_stops) o->scenes.yield_stops = false;
+  if (raw.internal_junction_yield) o->scenes.internal_junction_yield = true;
   if (raw.no_heading_hold) o->scenes.heading_hold = false;
   if (raw.no_way_heading) o->scenes.way_heading = false;
   if (raw.junction_shapes) o->scenes.junction_shapes = true;

@@ -171,6 +171,14 @@ void OptionTable::Estimator(DriverOptions* o) {
       "bench/RESULTS.md): a vehicle whose way from back to front a turn bends (a bus or truck "
       "in a junction turn) is a chain of boxes along that way, not one box along SUMO's angle "
       "(plugin/README.md, \"Bodies in a turn\")")(
+      "internal-junction-yield", po::bool_switch(&raw.internal_junction_yield),
+      "experimental (ours, off by default): a vehicle that must yield where its turn waits "
+      "inside the junction (SUMO's internal junction, e.g. a left turn across oncoming "
+      "traffic) gets its yield line there, not at the junction's entry")(
+      "ego-stops", po::bool_switch(&raw.ego_stops),
+      "experimental (ours, off by default): an ego that must stop ahead (a red or yellow light, "
+      "a stop sign, a yield line while a foe approaches) and can do so comfortably is expected "
+      "to: its reference stops at the line (estimator Params::ego_stop_obligations)")(
       "release-braking", po::bool_switch(&raw.release_braking),
       "experimental (ours, off by default): a vehicle (the ego too) that brakes harder than its "
       "leader, its stop line and its lane's curve ask is expected to release its brake (its "

@@ -43,6 +43,11 @@ struct SceneConfig {
    *  vehicle goes on when its gap before the foe suffices, so "a foe approaches" is not "it
    *  stops" (bench/RESULTS.md, right-of-way violations). */
   bool yield_stops{true};
+  /** Where such a link's internal lane continues into another internal lane (SUMO's internal
+   *  junction: a left turn across oncoming traffic), the yield line is at the end of the first
+   *  internal lane, where SUMO's vehicle waits inside the junction, not at the junction's
+   *  entry. --internal-junction-yield (an experiment, off by default). */
+  bool internal_junction_yield{false};
   /** --bent-bodies (off by default: measured, not kept; bench/RESULTS.md): a vehicle whose way
    *  behind its front turns (SUMO's box of it, front to back, shorter than the vehicle: IsBent)
    *  is a chain of boxes along that way, each keeping to the lanes it stands on; the first box

@@ -4,6 +4,20 @@
 
 namespace criticality::plugin {
 
+namespace {
+
+// Whether a link's internal lane leads on into another internal lane: SUMO's internal junction,
+// where a vehicle that must yield waits inside the junction.
+bool WaitsInTheJunction(const LaneLink& link, RoadNetwork* network) {
+  if (!IsInternal(link.internal)) return false;
+  for (const LaneLink& next : network->Links(link.internal)) {
+    if (IsInternal(next.internal) || IsInternal(next.lane)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 std::optional<StopLine> StopLineOf(const VehicleOnLane& v, const std::string& id,
                                    const SceneConfig& config, RoadNetwork* network,
                                    TrafficView* traffic) {
@@ -35,7 +49,18 @@ std::optional<StopLine> StopLineOf(const VehicleOnLane& v, const std::string& id
     const bool must_stop = st == "s" || st == "w";
     const bool must_yield =
         config.yield_stops && (st == "m" || st == "g" || st == "=") && link.has_foe;
-    if (must_stop || must_yield) return StopLine{StopLine::Reason::kYield, std::fmax(0.0, to_end)};
+    if (must_stop) return StopLine{StopLine::Reason::kYield, std::fmax(0.0, to_end)};
+    if (must_yield) {
+      // SUMO lets a vehicle that yields (a left turn across oncoming traffic) enter the junction
+      // and wait at its internal junction, where its internal lane continues into another one:
+      // the line is there, at the end of the first internal lane.
+      double d = std::fmax(0.0, to_end);
+      if (config.internal_junction_yield && WaitsInTheJunction(link, network)) {
+        d += network->Lane(link.internal).length_m;
+        if (d > reach) return std::nullopt;
+      }
+      return StopLine{StopLine::Reason::kYield, d};
+    }
     break;
   }
   return std::nullopt;

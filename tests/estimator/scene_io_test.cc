@@ -115,6 +115,22 @@ TEST(SceneIo, BrakingCausesKnownRoundTrips) {
   EXPECT_THROW(ReadScene(bad), InputError);
 }
 
+TEST(SceneIo, TheEgosStopLineRoundTrips) {
+  Scene scene = testing::RandomScene(6, 1, 0, true);
+  scene.ego.stop_line = StopLine{StopLine::Reason::kYield, 8.5};
+  for (Vehicle& v : scene.vehicles) v.stop_line.reset();
+  std::stringstream file;
+  WriteScene(file, scene);
+  const Scene back = ReadScene(file);
+  ASSERT_TRUE(back.ego.stop_line.has_value());
+  EXPECT_EQ(back.ego.stop_line->reason, StopLine::Reason::kYield);
+  EXPECT_EQ(back.ego.stop_line->distance_m, 8.5);
+  for (const Vehicle& v : back.vehicles) EXPECT_FALSE(v.stop_line.has_value());
+  std::istringstream bad("criticality-scene 1\nego e 0 0 0 1 0 0 0 4 2 -\n"
+                         "pedestrian p 0 0 0 1 0 0 0 .5 .5\nstop yield 3\n");
+  EXPECT_THROW(ReadScene(bad), InputError);
+}
+
 TEST(SceneIo, EulerUpdateStepRoundTrips) {
   Scene scene = testing::RandomScene(6, 1, 0, true);
   scene.euler_update_step_s = 0.25;

@@ -111,14 +111,50 @@ TEST(StopObligation, SceneFilesKeepTheLine) {
   ASSERT_TRUE(back.vehicles[0].stop_line.has_value());
   EXPECT_EQ(back.vehicles[0].stop_line->reason, StopLine::Reason::kYellowLight);
   EXPECT_EQ(back.vehicles[0].stop_line->distance_m, 9.5);
-  std::stringstream bad("criticality-scene 1\nego e 0 0 0 0 0 0 0 4.5 1.8 -\nstop red 3\n");
-  EXPECT_THROW(ReadScene(bad), InputError) << "a stop line belongs to a vehicle";
+  // After the ego line it is the ego's (Ego::stop_line); after a pedestrian it is an error.
+  std::stringstream ego("criticality-scene 1\nego e 0 0 0 0 0 0 0 4.5 1.8 -\nstop red 3\n");
+  const Scene own = ReadScene(ego);
+  ASSERT_TRUE(own.ego.stop_line.has_value());
+  EXPECT_EQ(own.ego.stop_line->distance_m, 3.0);
+  std::stringstream bad(
+      "criticality-scene 1\nego e 0 0 0 0 0 0 0 4.5 1.8 -\npedestrian p 0 0 0 1 0 0 0 .5 .5\n"
+      "stop red 3\n");
+  EXPECT_THROW(ReadScene(bad), InputError) << "a stop line belongs to a vehicle or the ego";
 }
 
 TEST(StopObligation, NegativeDistanceIsRejected) {
   Scene red = CrossingScene(9.5);
   red.vehicles[0].stop_line = StopLine{StopLine::Reason::kRedLight, -1.0};
   EXPECT_THROW(PCollision(red), InputError);
+}
+
+// Params::ego_stop_obligations: the ego at 8 m/s must yield at a line 10 m ahead (3.2 m/s^2
+// stops it there, comfortable), and a car stands 15 m beyond its front. Keeping its speed, the
+// ego hits the car within the horizon; complying, its reference stops at the line. A line
+// 2 m ahead (16 m/s^2 needed, not braking) is no credible stop and changes nothing; the
+// option is off by default.
+TEST(StopObligation, TheEgosOwnCredibleStopIsItsReference) {
+  Scene s;
+  s.ego.lanes = bench::StraightThreeLanes();
+  s.ego.state.speed_mps = 8.0;
+  Vehicle standing;
+  standing.id = "standing";
+  standing.length_m = 4.5;
+  standing.state.x_m = 0.5 * s.ego.length_m + 15.0 + 0.5 * standing.length_m;
+  s.vehicles.push_back(standing);
+  Params on;
+  on.ego_stop_obligations = true;
+  const Result free_ego = Estimator(on).Estimate(s);
+  s.ego.stop_line = StopLine{StopLine::Reason::kYield, 10.0};
+  const Result complying = Estimator(on).Estimate(s);
+  const Result default_params = Estimator(Params{}).Estimate(s);
+  s.ego.stop_line->distance_m = 2.0;
+  const Result too_late = Estimator(on).Estimate(s);
+  EXPECT_GT(free_ego.p_reference, 0.9);
+  EXPECT_LT(complying.p_reference, 0.05);
+  EXPECT_LT(complying.p_collision, free_ego.p_collision);
+  EXPECT_EQ(default_params.p_collision, free_ego.p_collision);
+  EXPECT_EQ(too_late.p_collision, free_ego.p_collision);
 }
 
 }  // namespace

@@ -64,8 +64,9 @@ class FakeSumoWorld final : public SumoWorld {
   /** A link from `from_lane` to `to_lane` through a junction's internal lane `via` (SUMO's
    *  TraCIConnection: its approached lane and its via lane). */
   void AddLinkVia(const std::string& from_lane, const std::string& to_lane, const std::string& via,
-                  std::string direction = "s") {
-    links_[from_lane].push_back(LaneLink{to_lane, via, "M", false, std::move(direction)});
+                  std::string direction = "s", std::string state = "M", bool has_foe = false) {
+    links_[from_lane].push_back(
+        LaneLink{to_lane, via, std::move(state), has_foe, std::move(direction)});
   }
   void SetAllowed(const std::string& lane, std::vector<std::string> classes) {
     allowed_[lane] = std::move(classes);

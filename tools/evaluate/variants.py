@@ -42,6 +42,16 @@ VARIANTS = [
             "ours with braking that no known cause asks for released in the reference "
             "(--release-braking)",
             {"act": "warn", "release-braking": "true"}),
+    Variant("ego-stops",
+            "ours with the ego's own credible stop line as its reference (--ego-stops)",
+            {"act": "warn", "ego-stops": "true"}),
+    Variant("internal-junction-yield",
+            "ours with yield lines where a turn waits inside the junction "
+            "(--internal-junction-yield)",
+            {"act": "warn", "internal-junction-yield": "true"}),
+    Variant("ijy-ego-stops",
+            "ours with --internal-junction-yield and --ego-stops",
+            {"act": "warn", "internal-junction-yield": "true", "ego-stops": "true"}),
     Variant("no-crossing-stops",
             "ours without a waiting pedestrian's stop where its crossing begins (--no-crossing-stops)",
             {"act": "warn", "no-crossing-stops": "true"}),

@@ -327,6 +327,14 @@ struct Params {
    *  were no line (scored against its current acceleration, as without an obligation).
    *  Needs kNaturalistic scoring and at least 4 profiles; paper-literal: false. */
   bool stop_obligations{true};
+  /** With true (and stop_obligations), the ego's own credible stop line (Ego::stop_line, the
+   *  same credibility as below) makes its reference the constant deceleration that stops it
+   *  there, where that is below its reference otherwise: a driver turning left across oncoming
+   *  traffic it must yield to is expected to stop, as it is expected to brake for a slower car
+   *  ahead (expected_accel_reference). No mixture as for the others: the hypotheses that drive
+   *  on keep their lower scores. An experiment, off by default (bench/RESULTS.md, 2026-12-04,
+   *  "the ego's own yield line"). */
+  bool ego_stop_obligations{false};
   /** The share of drivers who do not stop where they must. Red-light running, measured on
    *  vehicle trajectories at nine signalised sites: 0.9-2.0 % of the vehicles near the stop line
    *  at the onset of yellow entered on red (a US DOT-funded dilemma-zone study, table 6.4, as

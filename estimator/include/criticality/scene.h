@@ -131,18 +131,6 @@ constexpr int kMaxCarriages = 64;
 
 /** The vehicle whose criticality is estimated. Simulated with the two-track model (with its
  *  type's limits and model parameters; a rail ego moves along its track). */
-struct Ego {
-  std::string id{"ego"};
-  ObjectState state;
-  double length_m{4.5};
-  double width_m{1.8};
-  std::optional<double> height_m;  ///< when known, the vehicle class uses 8 classes instead of 6
-  LaneSet lanes;                   ///< in the ego's local frame
-  /** Its type: the class and limits of its hypotheses. The ego's body is one box (a long ego's
-   *  carriages are not modelled). */
-  VehicleType type;
-};
-
 /** A line ahead of a vehicle at which the traffic rules oblige it to stop, as the traffic
  *  simulation (or a map and a signal detector) knows it. */
 struct StopLine {
@@ -154,6 +142,21 @@ struct StopLine {
   Reason reason{Reason::kRedLight};
   /** Distance along its path from its front bumper to the line, >= 0. */
   double distance_m{0.0};
+};
+
+struct Ego {
+  std::string id{"ego"};
+  ObjectState state;
+  double length_m{4.5};
+  double width_m{1.8};
+  std::optional<double> height_m;  ///< when known, the vehicle class uses 8 classes instead of 6
+  LaneSet lanes;                   ///< in the ego's local frame
+  /** Its type: the class and limits of its hypotheses. The ego's body is one box (a long ego's
+   *  carriages are not modelled). */
+  VehicleType type;
+  /** Where it must stop, when it must: with Params::ego_stop_obligations, a credible stop there
+   *  becomes its reference (estimator/ALGORITHM.md, "Stop obligations"). */
+  std::optional<StopLine> stop_line;
 };
 
 /** Another vehicle (a collision object, CO). Simulated with the one-track model (by its type:

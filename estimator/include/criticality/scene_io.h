@@ -20,9 +20,10 @@
  *    type car|motorcycle|bicycle|heavy|rail [mass M] [accel A] [decel D] [emergency-decel E] [max-speed V]
  *    carriage x y yaw yaw_rate length width LANES(0|1)
  *  `lane` lines belong to the ego, vehicle or carriage line before them (for a vehicle or a
- *  carriage only when its LANES flag is 1); a `stop` line (Vehicle::stop_line) to the vehicle
- *  line before it; a `type` line (Ego::type, Vehicle::type: the road user class and the values
- *  given, absent: a car without values) to the ego or vehicle line before it; `carriage` lines
+ *  carriage only when its LANES flag is 1); a `stop` line (Vehicle::stop_line,
+ *  Ego::stop_line) to the vehicle or ego line before it; a `type` line (Ego::type,
+ *  Vehicle::type: the road user class and the values given, absent: a car without values) to
+ *  the ego or vehicle line before it; `carriage` lines
  *  (Vehicle::carriages, front to back) to the vehicle line before them; a
  *  `footway` line (Pedestrian::stays_on_footway) to the pedestrian line before it; an
  *  `expected-accel` line sets ObjectState::expected_accel_mps2 of the ego, vehicle or

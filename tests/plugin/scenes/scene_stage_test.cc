@@ -135,6 +135,37 @@ TEST(SceneStage, ARedLightOrAYieldToAnApproachingFoeIsAStopLine) {
   EXPECT_FALSE(nstage.Run(Observe(n, {"minor"})).EgoOf(0).stop_line.has_value());
 }
 
+// --internal-junction-yield: a left turn that waits inside the junction (its internal lane
+// continues into another one, SUMO's internal junction) yields there, at the end of the first
+// internal lane; a turn whose internal lane leads straight out keeps its line at the entry.
+TEST(SceneStage, ATurnThatWaitsInsideTheJunctionYieldsAtItsInternalJunction) {
+  for (const bool inside : {false, true}) {
+    SCOPED_TRACE(inside ? "internal junction" : "entry");
+    SceneConfig config;
+    config.internal_junction_yield = true;
+    FakeSumoWorld w;
+    w.AddEdge("E", 0, 0, 100, 0, 1);
+    w.AddLaneShape(":J_1", {{100, 0}, {108, 0}});   // 8 m to the internal junction
+    w.AddLaneShape(":J_2", {{108, 0}, {112, 4}});
+    w.AddEdge("F", 112, 4, 112, 100, 1);
+    w.AddLinkVia("E_0", "F_0", ":J_1_0", "l", "m", /*has_foe=*/true);
+    if (inside)
+      w.AddLink(":J_1_0", ":J_2_0", "m");
+    else
+      w.AddLink(":J_1_0", "F_0", "M");
+    w.AddVehicle("left", 95, 0, 90, 8, "E_0", 95, {"E", "F"});
+    SceneStage stage(config, w.StepLength(), true, &w, &w);
+    const SceneBatch b = stage.Run(Observe(w, {"left"}));
+    ASSERT_TRUE(b.EgoOf(0).stop_line.has_value());
+    EXPECT_NEAR(b.EgoOf(0).stop_line->distance_m, inside ? 5.0 + 8.0 : 5.0, 1e-9);
+    // Off by default: the line stays at the entry.
+    SceneStage plain = Stage(w);
+    const SceneBatch p = plain.Run(Observe(w, {"left"}));
+    ASSERT_TRUE(p.EgoOf(0).stop_line.has_value());
+    EXPECT_NEAR(p.EgoOf(0).stop_line->distance_m, 5.0, 1e-9);
+  }
+}
+
 // --no-yield-stops: the yield line to an approaching foe goes; a red light and a stop sign stay.
 TEST(SceneStage, WithoutYieldStopsOnlyLightsAndStopSignsAreStopLines) {
   SceneConfig config;
