@@ -55,8 +55,10 @@ CRIT_HD void ShiftAlongPath(double lead_s, double v, double v0, double kappa, do
     *y += cy * d;
     return;
   }
-  const double r = d / phi, h = std::sin(0.5 * phi);
-  const double along = std::sin(phi) * r, across = 2.0 * h * h * r;
+  // sin(phi) = 2 sin(phi / 2) cos(phi / 2): one angle's sine and cosine for both.
+  const double half = 0.5 * phi, r = d / phi;
+  const double sh = std::sin(half), ch = std::cos(half);
+  const double along = 2.0 * sh * ch * r, across = 2.0 * sh * sh * r;
   *x += cx * along - cy * across;
   *y += cy * along + cx * across;
 }

@@ -532,12 +532,11 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
                              hn::Set(d, core::kMaxShiftTurnRad));
         const auto straight = hn::Eq(phi, zero);
         const V r = hn::Div(shift, hn::IfThenElse(straight, one, phi));
-        V s_phi, c_phi, s_half, c_half;
-        SinCos(d, phi, &s_phi, &c_phi);
+        V s_half, c_half;
         SinCos(d, hn::Mul(hn::Set(d, 0.5), phi), &s_half, &c_half);
-        const V along = hn::IfThenElse(straight, shift, hn::Mul(s_phi, r));
-        const V across =
-            hn::IfThenElseZero(hn::Not(straight), hn::Mul(hn::Mul(hn::Mul(two, s_half), s_half), r));
+        const V two_s = hn::Mul(two, s_half);
+        const V along = hn::IfThenElse(straight, shift, hn::Mul(hn::Mul(two_s, c_half), r));
+        const V across = hn::IfThenElseZero(hn::Not(straight), hn::Mul(hn::Mul(two_s, s_half), r));
         px = hn::Add(px, hn::Sub(hn::Mul(course_xe, along), hn::Mul(course_ye, across)));
         py = hn::Add(py, hn::Add(hn::Mul(course_ye, along), hn::Mul(course_xe, across)));
       }
