@@ -525,9 +525,12 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
 
       // StorePose
       V px = nx, py = ny;
-      if (h.position_lead > 0.0) {  // core::ShiftAlongPath of core::BodyCurvature
+      // core::BodyCurvature, once for the shift along the way and the body on its path.
+      V kappa = zero;
+      if (h.position_lead > 0.0 || h.body_on_path)
+        kappa = hn::IfThenElse(hn::Gt(nv, one), hn::Div(nyr, nv), hn::Mul(nyr, nv));
+      if (h.position_lead > 0.0) {  // core::ShiftAlongPath
         const V shift = hn::Mul(hn::Sub(nv, hn::Set(d, h.v0)), hn::Set(d, h.position_lead));
-        const V kappa = hn::IfThenElse(hn::Gt(nv, one), hn::Div(nyr, nv), hn::Mul(nyr, nv));
         const V phi = ClampV(hn::Mul(kappa, shift), hn::Set(d, -core::kMaxShiftTurnRad),
                              hn::Set(d, core::kMaxShiftTurnRad));
         const auto straight = hn::Eq(phi, zero);
@@ -542,7 +545,6 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       }
       if (h.body_on_path) {  // core::PathSagitta of core::BodyCurvature, across the course
         const double c = 2.0 * h.half_length, limit = 2.0 / c;
-        const V kappa = hn::IfThenElse(hn::Gt(nv, one), hn::Div(nyr, nv), hn::Mul(nyr, nv));
         const V e = hn::Mul(ClampV(kappa, hn::Set(d, -limit), hn::Set(d, limit)),
                             hn::Set(d, 0.125 * c * c));
         px = hn::Sub(px, hn::Mul(course_ye, e));

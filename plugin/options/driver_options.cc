@@ -174,7 +174,10 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_lateral_controller) p.lateral_controller = false;
   if (raw.no_road_model) p.road_model = false;
   if (raw.no_car_following) p.expected_accel_reference = false;
-  if (raw.release_braking) p.release_unexplained_braking = true;
+  if (raw.release_braking) {
+    p.release_unexplained_braking = true;
+    o->scenes.braking_causes = true;
+  }
   if (raw.ego_stops) p.ego_stop_obligations = true;
   if (raw.no_crossing_obligations) o->scenes.crossing_obligations = false;
   if (raw.no_crossing_stops) o->scenes.crossing_stops = false;

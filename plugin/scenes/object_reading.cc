@@ -256,7 +256,7 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.stop_line = StopLineOf(v, o.id, config_, network_, traffic_);
   // Its leader and its stop line are read: the reasons to brake this scene knows
   // (Params::release_unexplained_braking), unless it may be yielding ahead.
-  s.state.braking_causes_known = !MayYieldAhead(v, config_, network_);
+  if (config_.braking_causes) s.state.braking_causes_known = !MayYieldAhead(v, config_, network_);
   s.carriages = PlaceCarriages(body, v, o.width_m, config_, step_s_, network_);
   Plausible(lanes.smooth_lane_yaw_rate_radps, held, &s);
   last.yaw_rate_radps = s.state.yaw_rate_radps;

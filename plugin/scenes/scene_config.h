@@ -48,6 +48,11 @@ struct SceneConfig {
    *  internal lane, where SUMO's vehicle waits inside the junction, not at the junction's
    *  entry. --internal-junction-yield (an experiment, off by default). */
   bool internal_junction_yield{false};
+  /** Whether to tell the estimator which vehicles' reasons to brake the scene knows
+   *  (ObjectState::braking_causes_known, MayYieldAhead in stop_lines.h): only what
+   *  --release-braking (Params::release_unexplained_braking) reads, and a link read per
+   *  vehicle near its lane's end, so off unless that experiment is on. */
+  bool braking_causes{false};
   /** --bent-bodies (off by default: measured, not kept; bench/RESULTS.md): a vehicle whose way
    *  behind its front turns (SUMO's box of it, front to back, shorter than the vehicle: IsBent)
    *  is a chain of boxes along that way, each keeping to the lanes it stands on; the first box

@@ -16,6 +16,20 @@ bool WaitsInTheJunction(const LaneLink& link, RoadNetwork* network) {
   return false;
 }
 
+// The link from the vehicle's lane to its next lane (its route's, or the one it is seen to
+// take), read now; nullopt when the lane's end lies beyond `reach` or there is no next lane.
+std::optional<LaneLink> LinkAhead(const VehicleOnLane& v, double reach, RoadNetwork* network) {
+  const double to_end = network->Lane(v.lane).length_m - v.lane_position_m;
+  if (to_end > reach) return std::nullopt;
+  int index = v.route_index;
+  const std::string next = NextLaneOf(v, v.lane, network, &index);
+  if (next.empty()) return std::nullopt;
+  for (const LaneLink& link : network->LinksNow(v.lane)) {
+    if (link.lane == next || link.internal == next) return link;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<StopLine> StopLineOf(const VehicleOnLane& v, const std::string& id,
@@ -32,52 +46,37 @@ std::optional<StopLine> StopLineOf(const VehicleOnLane& v, const std::string& id
         return StopLine{StopLine::Reason::kYellowLight, d};
     }
   }
-  const double to_end = network->Lane(v.lane).length_m - v.lane_position_m;
-  if (to_end > reach) return std::nullopt;
-  int index = v.route_index;
-  const std::string next = NextLaneOf(v, v.lane, network, &index);
-  if (next.empty()) return std::nullopt;
-  for (const LaneLink& link : network->LinksNow(v.lane)) {
-    if (link.lane != next && link.internal != next) continue;
-    const std::string& st = link.state;
-    // Seen, not read from the route: the signal of the link it is seen to take, at its lane's
-    // end (a signal further on is not seen).
-    if (v.observable_only && (st == "r" || st == "u"))
-      return StopLine{StopLine::Reason::kRedLight, std::fmax(0.0, to_end)};
-    if (v.observable_only && (st == "y" || st == "Y"))
-      return StopLine{StopLine::Reason::kYellowLight, std::fmax(0.0, to_end)};
-    const bool must_stop = st == "s" || st == "w";
-    const bool must_yield =
-        config.yield_stops && (st == "m" || st == "g" || st == "=") && link.has_foe;
-    if (must_stop) return StopLine{StopLine::Reason::kYield, std::fmax(0.0, to_end)};
-    if (must_yield) {
-      // SUMO lets a vehicle that yields (a left turn across oncoming traffic) enter the junction
-      // and wait at its internal junction, where its internal lane continues into another one:
-      // the line is there, at the end of the first internal lane.
-      double d = std::fmax(0.0, to_end);
-      if (config.internal_junction_yield && WaitsInTheJunction(link, network)) {
-        d += network->Lane(link.internal).length_m;
-        if (d > reach) return std::nullopt;
-      }
-      return StopLine{StopLine::Reason::kYield, d};
-    }
-    break;
+  const std::optional<LaneLink> link = LinkAhead(v, reach, network);
+  if (!link) return std::nullopt;
+  const double to_end = std::fmax(0.0, network->Lane(v.lane).length_m - v.lane_position_m);
+  const std::string& st = link->state;
+  // Seen, not read from the route: the signal of the link it is seen to take, at its lane's
+  // end (a signal further on is not seen).
+  if (v.observable_only && (st == "r" || st == "u"))
+    return StopLine{StopLine::Reason::kRedLight, to_end};
+  if (v.observable_only && (st == "y" || st == "Y"))
+    return StopLine{StopLine::Reason::kYellowLight, to_end};
+  const bool must_stop = st == "s" || st == "w";
+  const bool must_yield =
+      config.yield_stops && (st == "m" || st == "g" || st == "=") && link->has_foe;
+  if (must_stop) return StopLine{StopLine::Reason::kYield, to_end};
+  if (!must_yield) return std::nullopt;
+  // SUMO lets a vehicle that yields (a left turn across oncoming traffic) enter the junction and
+  // wait at its internal junction, where its internal lane continues into another one: the
+  // line is there, at the end of the first internal lane.
+  double d = to_end;
+  if (config.internal_junction_yield && WaitsInTheJunction(*link, network)) {
+    d += network->Lane(link->internal).length_m;
+    if (d > reach) return std::nullopt;
   }
-  return std::nullopt;
+  return StopLine{StopLine::Reason::kYield, d};
 }
 
 bool MayYieldAhead(const VehicleOnLane& v, const SceneConfig& config, RoadNetwork* network) {
-  const double to_end = network->Lane(v.lane).length_m - v.lane_position_m;
-  if (to_end > ReachAhead(v.speed_mps, config)) return false;
-  int index = v.route_index;
-  const std::string next = NextLaneOf(v, v.lane, network, &index);
-  if (next.empty()) return false;
-  for (const LaneLink& link : network->LinksNow(v.lane)) {
-    if (link.lane != next && link.internal != next) continue;
-    const std::string& st = link.state;
-    return st == "m" || st == "=" || st == "g" || st == "s" || st == "w";
-  }
-  return false;
+  const std::optional<LaneLink> link = LinkAhead(v, ReachAhead(v.speed_mps, config), network);
+  if (!link) return false;
+  const std::string& st = link->state;
+  return st == "m" || st == "=" || st == "g" || st == "s" || st == "w";
 }
 
 }  // namespace criticality::plugin

@@ -204,11 +204,17 @@ TEST(SceneStage, BrakingCausesAreKnownExceptBeforeALinkWithoutPriority) {
   w.AddVehicle("minor_near", 85, 0, 90, 10, "E_0", 85, {"E", "F"});
   w.AddVehicle("minor_far", 10, 0, 90, 10, "E_0", 10, {"E", "F"});
   w.AddVehicle("major_near", 85, 10, 90, 10, "G_0", 85, {"G", "H"});
-  SceneStage stage = Stage(w);
+  SceneConfig config;
+  config.braking_causes = true;  // as --release-braking sets it
+  SceneStage stage(config, w.StepLength(), true, &w, &w);
   const SceneBatch b = stage.Run(Observe(w, {"minor_near", "minor_far", "major_near"}));
   EXPECT_FALSE(b.EgoOf(0).state.braking_causes_known);  // 15 m from a minor link
   EXPECT_TRUE(b.EgoOf(1).state.braking_causes_known);   // the link is beyond its reach
   EXPECT_TRUE(b.EgoOf(2).state.braking_causes_known);   // a major link: nothing to yield to
+  // Without the experiment nothing is read or said: the estimator's reference is unchanged.
+  SceneStage plain = Stage(w);
+  const SceneBatch q = plain.Run(Observe(w, {"minor_near", "minor_far", "major_near"}));
+  for (size_t k = 0; k < 3; ++k) EXPECT_FALSE(q.EgoOf(k).state.braking_causes_known);
 }
 
 TEST(SceneStage, AFollowerExpectsToStopBehindALeaderThatMustStop) {
