@@ -11,7 +11,8 @@
 #                                 on the GPU machine: runs the CUDA tests, then criticality-bench
 #                                 (--compare on S1/S2, cuda on S1/S2 with 6 and 5 profiles, a
 #                                 recorded city fleet step as one batch beside the cpu's, the
-#                                 scaling scenes), printing a table and a JSON line for each.
+#                                 the risk kernels' variants side by side, the scaling scenes),
+#                                 printing a table and a JSON line for each.
 #                                 Without a usable GPU the tests skip and cuda rows are absent.
 # Every command is stopped after STEP_TIMEOUT seconds (default 150), so that one hang does not
 # take the whole lease; the run continues and exits non-zero.
@@ -78,6 +79,10 @@ for t in "${tests[@]}"; do
   echo "== $(basename "$t")"
   run "$t" --gtest_brief=1
 done
+for mode in thread warp; do  # the other risk kernels (CRITICALITY_CUDA_RISK, cuda_backend.cu)
+  echo "== $(basename "${tests[1]}") with CRITICALITY_CUDA_RISK=$mode"
+  CRITICALITY_CUDA_RISK=$mode run "${tests[1]}" --gtest_brief=1
+done
 
 echo "== criticality-bench --compare (every backend, same scene, one process)"
 for scene in S1 S2; do
@@ -98,6 +103,19 @@ run "$bench" --fleet "$fleet" --repeat 5 --warmup 1 --json
 echo "== a fleet of S1-size egos in one call (target: >= 10,000 egos/s on one H100)"
 for n in 1000 10000; do
   run "$bench" --backend cuda --scene S1 --batch "$n" --repeat 5 --warmup 1 --json
+done
+echo "== the risk kernels side by side (CRITICALITY_CUDA_RISK: thread, default, warp), 3 rounds;"
+echo "   stages with CRITICALITY_CUDA_TIMING=1 (risk kernels, and of them the rows)"
+for round in 1 2 3; do
+  for mode in thread default warp; do
+    echo "-- round $round, risk kernels: $mode"
+    risk=$mode
+    [ "$mode" = default ] && risk=
+    CRITICALITY_CUDA_RISK=$risk run "$bench" --backend cuda --scene S2 --repeat "$repeat" --warmup 3
+    CRITICALITY_CUDA_RISK=$risk run "$bench" --fleet "$fleet" --repeat 5 --warmup 1
+    CRITICALITY_CUDA_RISK=$risk CRITICALITY_CUDA_TIMING=1 run "$bench" --backend cuda --scene S2 \
+      --repeat 3 --warmup 1
+  done
 done
 echo "== scaling with the number of other vehicles (cpu and cuda)"
 for n in 1 3 10 30 100; do

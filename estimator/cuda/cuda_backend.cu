@@ -1,14 +1,15 @@
 // The CUDA backend: trajectory generation, collision recognition and risk assessment on the
 // device, for one scene or a whole batch of scenes in one set of launches (batch_layout.h), from
-// the same core/ functions as the CPU (one thread per hypothesis, per ego x CO pair, per ego
-// hypothesis; the per-thread bodies are in kernel_bodies.h, tested on the CPU), with no host round
-// trip between modules. Street data processing and hypothesis scoring (tiny) stay on the host
-// (BuildProblem). Buffers are plain cudaMalloc, grown when needed and reused across calls. Poses
-// are stored step-major ([n * count + t]) so that the threads of a warp read neighbouring CO poses.
-// Sums over ego hypotheses run in ego order on the device, like the CPU's, and every CUDA failure
-// becomes a CudaError naming the step. A problem with carriages (long bodies) has every set
-// simulated and checked on the device, and its pair matrix folded and its risk assessed on the
-// host (internal::AssessBodies), beside the batch's other problems.
+// the same core/ functions as the CPU (one thread per hypothesis and per ego x CO pair, one warp
+// per ego hypothesis's risk with its scratch in shared memory; the bodies are in kernel_bodies.h,
+// tested on the CPU), with no host round trip between modules. Street data processing and
+// hypothesis scoring (tiny) stay on the host (BuildProblem). Buffers are plain cudaMalloc, grown
+// when needed and reused across calls. Poses are stored step-major ([n * count + t]) so that the
+// threads of a warp read neighbouring CO poses. Sums over ego hypotheses run in ego order on the
+// device, like the CPU's, and every CUDA failure becomes a CudaError naming the step. A problem
+// with carriages (long bodies) has every set simulated and checked on the device, and its pair
+// matrix folded and its risk assessed on the host (internal::AssessBodies), beside the batch's
+// other problems.
 #include <cuda_runtime.h>
 
 #include <algorithm>
@@ -111,8 +112,49 @@ __global__ void RiskKernel(BatchLayout b, const std::int16_t* first, const doubl
                            const char* ego_hits, RiskScratch w, double* ego_col, double* by_step,
                            double* by_object) {
   const int g = blockIdx.x * blockDim.x + threadIdx.x;
-  if (g < b.total_ego)
-    RiskBody(g, b, first, p_co, ego_hits, w, ego_col, by_step, by_object);
+  if (g < b.total_ego) RiskBody(g, b, first, p_co, ego_hits, w, ego_col, by_step, by_object);
+}
+
+// A warp on the device: each lane runs its own part of a phase; Sync orders the warp's
+// shared and global memory between phases.
+struct DeviceWarp {
+  int lane;
+  template <typename F>
+  __device__ void Lanes(F f) const {
+    f(lane);
+  }
+  template <typename F>
+  __device__ void Lane0(F f) const {
+    if (lane == 0) f();
+  }
+  __device__ void Sync() const { __syncwarp(); }
+  __device__ void Increment(int* a) const { atomicAdd(a, 1); }
+};
+
+// One warp per ego hypothesis (RiskRowBody), each with its RiskRowBytes of shared memory.
+__global__ void RiskRowKernel(BatchLayout b, const std::int16_t* first, const double* p_co,
+                              const char* ego_hits, int* events, int max_obj, double* ego_col,
+                              double* by_step, double* by_obj) {
+  extern __shared__ double shared[];
+  const int warp = threadIdx.x / kWarp;
+  const int g = blockIdx.x * (blockDim.x / kWarp) + warp;
+  char* mine = reinterpret_cast<char*>(shared) + warp * RiskRowBytes(b.steps, max_obj);
+  RiskRowBody(DeviceWarp{static_cast<int>(threadIdx.x % kWarp)}, g, b, first, p_co, ego_hits,
+              events, RiskRowScratchAt(mine, b.steps, max_obj), ego_col, by_step, by_obj);
+}
+
+// One warp per risk output (ReduceWarpBody).
+__global__ void ReduceWarpKernel(BatchLayout b, int outputs, const double* p_ego,
+                                 const double* ego_col, const double* by_step,
+                                 const double* by_object, double* out) {
+  constexpr int kWarps = kThreads / kWarp;
+  __shared__ double term[kWarps][kWarp];
+  __shared__ int counts[kWarps][kWarp];
+  const int warp = threadIdx.x / kWarp;
+  const int q = blockIdx.x * kWarps + warp;
+  if (q >= outputs) return;
+  ReduceWarpBody(DeviceWarp{static_cast<int>(threadIdx.x % kWarp)}, q, b, p_ego, ego_col, by_step,
+                 by_object, ReduceScratch{term[warp], counts[warp]}, out);
 }
 
 __global__ void ReduceKernel(BatchLayout b, int outputs, const double* p_ego, const double* ego_col,
@@ -131,6 +173,18 @@ class CudaBackend final : public EstimatorBackend {
     Check(cudaSetDevice(0), "cudaSetDevice");
     const char* timing = std::getenv("CRITICALITY_CUDA_TIMING");
     print_timing_ = timing && *timing && std::string(timing) != "0";
+    // CRITICALITY_CUDA_RISK, to compare the risk kernels on one binary: unset, a warp per ego
+    // hypothesis (RiskRowKernel) and a thread per output (ReduceKernel); "thread", a thread for
+    // each (the first kernels); "warp", a warp for each (ReduceWarpKernel: checked on the CPU
+    // by emulation, not yet run on a GPU, so not the default).
+    if (const char* risk = std::getenv("CRITICALITY_CUDA_RISK"); risk && *risk) {
+      const std::string v(risk);
+      if (v != "thread" && v != "warp")
+        throw CudaError("CRITICALITY_CUDA_RISK=" + v +
+                        " is neither 'thread' nor 'warp'; unset it for the default");
+      rows_per_thread_ = v == "thread";
+      reduce_per_thread_ = v == "thread";
+    }
   }
 
   void GenerateTrajectories(const internal::Problem& pb) override {
@@ -167,7 +221,7 @@ class CudaBackend final : public EstimatorBackend {
     }
     for (const auto& [first, last] : chunks) {
       const std::vector<const internal::Problem*> part(problems.begin() + first,
-                                                        problems.begin() + last);
+                                                       problems.begin() + last);
       std::vector<Result> out(part.size());
       RunChunk(part, params, keep_pair_matrix, &out);
       std::move(out.begin(), out.end(), results->begin() + first);
@@ -192,12 +246,48 @@ class CudaBackend final : public EstimatorBackend {
                           &d_object_of_, &d_co_offset_, &d_hist_, &d_events_})
       n += a->bytes();
     for (const auto* a : {&d_pair_base_, &d_ego_obj_base_}) n += a->bytes();
-    for (const auto* a : {&d_co_hl_, &d_co_hw_, &d_ego_hl_, &d_ego_hw_, &d_p_co_, &d_p_ego_, &d_ex_,
-                          &d_ey_, &d_eyaw_, &d_ec_, &d_es_, &d_cx_, &d_cy_, &d_cyaw_, &d_cc_,
-                          &d_cs_, &d_contrib_, &d_mass_, &d_ego_col_, &d_by_step_, &d_by_obj_,
-                          &d_out_, &d_ego_bounds_, &d_co_bounds_})
+    for (const auto* a :
+         {&d_co_hl_,   &d_co_hw_,   &d_ego_hl_, &d_ego_hw_, &d_p_co_,       &d_p_ego_,
+          &d_ex_,      &d_ey_,      &d_eyaw_,   &d_ec_,     &d_es_,         &d_cx_,
+          &d_cy_,      &d_cyaw_,    &d_cc_,     &d_cs_,     &d_contrib_,    &d_mass_,
+          &d_ego_col_, &d_by_step_, &d_by_obj_, &d_out_,    &d_ego_bounds_, &d_co_bounds_})
       n += a->bytes();
     return n;
+  }
+
+  // How the risk kernel runs this chunk: a warp per ego hypothesis with its scratch in shared
+  // memory (RiskRowKernel; up to 4 warps a block, fewer where a row's scratch is large), or,
+  // where one warp's scratch does not fit or CRITICALITY_CUDA_RISK=thread asks for it (to
+  // compare), a thread per ego hypothesis with its scratch in global memory (RiskKernel).
+  struct RowLaunch {
+    int warps_per_block{0};  ///< 0: RiskKernel
+    int max_obj{0};
+    int bytes_per_warp{0};
+  };
+  RowLaunch RiskRowLaunch() {
+    RowLaunch r;
+    if (rows_per_thread_) return r;
+    const BatchHost& h = host_;
+    for (int p = 0; p < h.problems; ++p)
+      r.max_obj = std::max(r.max_obj, h.obj_base[p + 1] - h.obj_base[p]);
+    const size_t per_warp = RiskRowBytes(h.steps, r.max_obj);
+    if (shared_optin_ == 0) {
+      int device = 0;
+      Check(cudaGetDevice(&device), "cudaGetDevice");
+      Check(cudaDeviceGetAttribute(&shared_optin_, cudaDevAttrMaxSharedMemoryPerBlockOptin, device),
+            "shared memory per block");
+    }
+    const size_t warps = std::min<size_t>(4, static_cast<size_t>(shared_optin_) / per_warp);
+    if (warps == 0) return r;
+    r.warps_per_block = static_cast<int>(warps);
+    r.bytes_per_warp = static_cast<int>(per_warp);
+    const int bytes = r.warps_per_block * r.bytes_per_warp;
+    if (bytes > shared_attr_) {
+      Check(cudaFuncSetAttribute(RiskRowKernel, cudaFuncAttributeMaxDynamicSharedMemorySize, bytes),
+            "risk row kernel's shared memory");
+      shared_attr_ = bytes;
+    }
+    return r;
   }
 
   void RunChunk(const std::vector<const internal::Problem*>& problems, const Params& params,
@@ -217,19 +307,41 @@ class CudaBackend final : public EstimatorBackend {
     const BatchHost& h = host_;
     const size_t total_ego = h.TotalEgo(), pairs = h.TotalPairs();
     const size_t ego_obj = std::max<long long>(h.TotalEgoObj(), 1);
-    RiskScratch w{d_hist_.Reserve(total_ego * (h.steps + 1), "cudaMalloc histogram"),
-                  d_events_.Reserve(pairs, "cudaMalloc events"),
-                  d_contrib_.Reserve(pairs, "cudaMalloc contributions"),
-                  d_mass_.Reserve(ego_obj, "cudaMalloc hit mass")};
     double* ego_col = d_ego_col_.Reserve(total_ego, "cudaMalloc ego collision probability");
     double* by_step = d_by_step_.Reserve(total_ego * h.steps, "cudaMalloc by step");
     double* by_obj = d_by_obj_.Reserve(ego_obj, "cudaMalloc by object");
     double* out = d_out_.Reserve(h.TotalOut(), "cudaMalloc risk output");
-    RiskKernel<<<Blocks(total_ego), kThreads>>>(layout_, d_first_.get(), d_p_co_.get(),
-                                                d_ego_hits_.get(), w, ego_col, by_step, by_obj);
-    Check(cudaGetLastError(), "after risk kernel launch");
-    ReduceKernel<<<Blocks(h.TotalOut()), kThreads>>>(layout_, h.TotalOut(), d_p_ego_.get(), ego_col,
-                                                     by_step, by_obj, out);
+    int* events = d_events_.Reserve(pairs, "cudaMalloc events");
+    const RowLaunch rows = RiskRowLaunch();
+    if (rows.warps_per_block > 0) {
+      const int per_block = rows.warps_per_block;
+      RiskRowKernel<<<static_cast<int>((total_ego + per_block - 1) / per_block), per_block * kWarp,
+                      rows.bytes_per_warp * per_block>>>(layout_, d_first_.get(), d_p_co_.get(),
+                                                         d_ego_hits_.get(), events, rows.max_obj,
+                                                         ego_col, by_step, by_obj);
+      Check(cudaGetLastError(), "after risk row kernel launch");
+    } else {
+      RiskScratch w{d_hist_.Reserve(total_ego * (h.steps + 1), "cudaMalloc histogram"), events,
+                    d_contrib_.Reserve(pairs, "cudaMalloc contributions"),
+                    d_mass_.Reserve(ego_obj, "cudaMalloc hit mass")};
+      RiskKernel<<<Blocks(total_ego), kThreads>>>(layout_, d_first_.get(), d_p_co_.get(),
+                                                  d_ego_hits_.get(), w, ego_col, by_step, by_obj);
+      Check(cudaGetLastError(), "after risk kernel launch");
+    }
+    double row_kernel_ms = 0.0;
+    if (print_timing_) {
+      Check(cudaDeviceSynchronize(), "after risk row kernel");
+      row_kernel_ms = MsSince(t);
+    }
+    if (reduce_per_thread_) {
+      ReduceKernel<<<Blocks(h.TotalOut()), kThreads>>>(layout_, h.TotalOut(), d_p_ego_.get(),
+                                                       ego_col, by_step, by_obj, out);
+    } else {
+      ReduceWarpKernel<<<static_cast<int>(
+                             (static_cast<size_t>(h.TotalOut()) * kWarp + kThreads - 1) / kThreads),
+                         kThreads>>>(layout_, h.TotalOut(), d_p_ego_.get(), ego_col, by_step,
+                                     by_obj, out);
+    }
     Check(cudaGetLastError(), "after reduction kernel launch");
     double risk_kernels_ms = 0.0;
     if (print_timing_) {
@@ -252,7 +364,8 @@ class CudaBackend final : public EstimatorBackend {
     for (size_t p = 0; p < problems.size(); ++p) {
       if (!problems[p]->HasCarriages()) continue;
       if (keep_pair_matrix) {
-        carriage_pairs[p].assign(first.begin() + h.pair_base[p], first.begin() + h.pair_base[p + 1]);
+        carriage_pairs[p].assign(first.begin() + h.pair_base[p],
+                                 first.begin() + h.pair_base[p + 1]);
       } else {
         d_first_.Download(&carriage_pairs[p], static_cast<size_t>(h.pair_base[p]),
                           static_cast<size_t>(h.pair_base[p + 1] - h.pair_base[p]),
@@ -279,10 +392,10 @@ class CudaBackend final : public EstimatorBackend {
     if (print_timing_) {
       std::fprintf(stderr,
                    "cuda chunk of %zu problems: upload %.3f (batch on the host %.3f), "
-                   "trajectories %.3f, collisions %.3f, risk kernels %.3f, downloads %.3f, host "
-                   "outputs %.3f, total %.3f ms\n",
+                   "trajectories %.3f, collisions %.3f, risk kernels %.3f (rows %.3f), downloads "
+                   "%.3f, host outputs %.3f, total %.3f ms\n",
                    problems.size(), upload_ms, batch_ms_, trajectory_ms - upload_ms, collision_ms,
-                   risk_kernels_ms, download_ms, MsSince(t_host), MsSince(t_chunk));
+                   risk_kernels_ms, row_kernel_ms, download_ms, MsSince(t_host), MsSince(t_chunk));
     }
     const double n = static_cast<double>(problems.size());
     for (Result& r : *results) {  // a batch shares its time: each result gets the mean
@@ -320,8 +433,8 @@ class CudaBackend final : public EstimatorBackend {
     r.ego_collision_probability.assign(col.begin() + h.ego_base[p],
                                        col.begin() + h.ego_base[p + 1]);
     internal::FinishDecisionOutputs(
-        pb, params,
-        std::vector<char>(hit.begin() + h.ego_base[p], hit.begin() + h.ego_base[p + 1]), &r);
+        pb, params, std::vector<char>(hit.begin() + h.ego_base[p], hit.begin() + h.ego_base[p + 1]),
+        &r);
     if (keep_pair_matrix) {
       r.first_collision_step.assign(first.begin() + h.pair_base[p],
                                     first.begin() + h.pair_base[p + 1]);
@@ -442,8 +555,12 @@ class CudaBackend final : public EstimatorBackend {
   }
 
   int host_threads_{1};
-  bool print_timing_{false};  ///< CRITICALITY_CUDA_TIMING: each chunk's stages on stderr
-  double batch_ms_{0.0};      ///< the last MakeBatch's time
+  int shared_optin_{0};             ///< the device's shared memory per block, opted in
+  int shared_attr_{48 * 1024};      ///< RiskRowKernel's dynamic shared memory allowed so far
+  bool rows_per_thread_{false};     ///< CRITICALITY_CUDA_RISK: RiskKernel instead of RiskRowKernel
+  bool reduce_per_thread_{false};   ///< ReduceKernel instead of ReduceWarpKernel
+  bool print_timing_{false};        ///< CRITICALITY_CUDA_TIMING: each chunk's stages on stderr
+  double batch_ms_{0.0};            ///< the last MakeBatch's time
   std::vector<double> sums_, col_;  ///< downloads of the last chunk
   std::vector<char> hit_;
   std::vector<std::int16_t> first_;

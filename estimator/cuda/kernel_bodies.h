@@ -136,8 +136,8 @@ CRIT_HD bool BlockApart(const double* ego_bounds, int total_ego, int i, const do
                         int total_co, int j, int block, double gap) {
   const double* e = ego_bounds + static_cast<size_t>(4 * block) * total_ego + i;
   const double* c = co_bounds + static_cast<size_t>(4 * block) * total_co + j;
-  const size_t se = total_ego, sc = total_co;  // strides between min x, max x, min y, max y
-  return c[0] - e[se] > gap || e[0] - c[sc] > gap ||                // apart in x
+  const size_t se = total_ego, sc = total_co;         // strides between min x, max x, min y, max y
+  return c[0] - e[se] > gap || e[0] - c[sc] > gap ||  // apart in x
          c[2 * sc] - e[3 * se] > gap || e[2 * se] - c[3 * sc] > gap;  // apart in y
 }
 
@@ -146,8 +146,8 @@ CRIT_HD bool BlockApart(const double* ego_bounds, int total_ego, int i, const do
  *  bounding-circle test before the exact one and early exit. A pair that collides marks its
  *  ego hypothesis in ego_hits (every writer writes 1; zeroed before the launch). */
 CRIT_HD void CollisionBody(long long k, const BatchLayout& b, const Poses& ego, const Poses& co,
-                           const double* ego_bounds, const double* co_bounds,
-                           std::int16_t* first, char* ego_hits) {
+                           const double* ego_bounds, const double* co_bounds, std::int16_t* first,
+                           char* ego_hits) {
   const int p = ProblemOf(b.pair_base, b.problems, k);
   const int n_co = b.co_base[p + 1] - b.co_base[p];
   const long long local = k - b.pair_base[p];
@@ -186,8 +186,8 @@ CRIT_HD void CollisionBody(long long k, const BatchLayout& b, const Poses& ego, 
  *  marked in ego_hits (CollisionBody; the marks are also the hits the host reads) collides
  *  with nothing: its collision probability is 0 and its row is not read (ReduceBody skips it). */
 CRIT_HD void RiskBody(int g, const BatchLayout& b, const std::int16_t* first, const double* p_co,
-                      const char* ego_hits, const RiskScratch& w, double* ego_col,
-                      double* by_step, double* by_object) {
+                      const char* ego_hits, const RiskScratch& w, double* ego_col, double* by_step,
+                      double* by_object) {
   if (!ego_hits[g]) {
     ego_col[g] = 0.0;
     return;
@@ -205,6 +205,153 @@ CRIT_HD void RiskBody(int g, const BatchLayout& b, const std::int16_t* first, co
       first + pairs, n_co, steps, n_obj, p_co + b.co_base[p], object_of,
       w.histogram + static_cast<size_t>(g) * (steps + 1), w.events + pairs, w.contrib + pairs,
       w.hit_mass + objs, by_step + static_cast<size_t>(g) * steps, by_object + objs, &n_events);
+}
+
+/** Lanes of a warp (RiskRowBody). */
+constexpr int kWarp = 32;
+
+/** One warp's shared memory in RiskRowBody: a row's histogram, hit masses and sums, and the
+ *  stage of 32 events at a time. */
+struct RiskRowScratch {
+  double* hit_mass;   ///< n_obj
+  double* by_object;  ///< n_obj
+  double* by_step;    ///< steps
+  double* stage_p;    ///< kWarp
+  int* hist;          ///< steps + 1
+  int* stage_o;       ///< kWarp
+  int* stage_s;       ///< kWarp
+  int* total;         ///< 1: the row's number of events
+};
+
+/** Bytes of one warp's RiskRowScratch (a multiple of 8). */
+CRIT_HD size_t RiskRowBytes(int steps, int max_obj) {
+  const size_t doubles = 2 * static_cast<size_t>(max_obj) + steps + kWarp;
+  const size_t ints = static_cast<size_t>(steps) + 1 + 2 * kWarp + 1;
+  return (doubles * sizeof(double) + ints * sizeof(int) + 7) / 8 * 8;
+}
+
+/** The scratch laid out from `base` (8-byte aligned, RiskRowBytes long). */
+CRIT_HD RiskRowScratch RiskRowScratchAt(void* base, int steps, int max_obj) {
+  RiskRowScratch s;
+  double* d = static_cast<double*>(base);
+  s.hit_mass = d;
+  s.by_object = d + max_obj;
+  s.by_step = d + 2 * max_obj;
+  s.stage_p = s.by_step + steps;
+  int* i = reinterpret_cast<int*>(s.stage_p + kWarp);
+  s.hist = i;
+  s.stage_o = i + steps + 1;
+  s.stage_s = s.stage_o + kWarp;
+  s.total = s.stage_s + kWarp;
+  return s;
+}
+
+/** A warp as the CPU emulates it: each lane-parallel phase runs lane after lane. */
+struct HostWarp {
+  template <typename F>
+  void Lanes(F f) const {
+    for (int lane = 0; lane < kWarp; ++lane) f(lane);
+  }
+  template <typename F>
+  void Lane0(F f) const {
+    f();
+  }
+  void Sync() const {}
+  void Increment(int* a) const { ++*a; }
+};
+
+/** Warp g (an ego hypothesis of the batch): what RiskBody computes, with the row's work spread
+ *  over the warp's lanes and its scratch in shared memory (`s`, RiskRowScratch). The lanes
+ *  clear the scratch, read the row (coalesced) and count its events by step; lane 0 turns the
+ *  counts into offsets and places the events (a counting sort, stable in j, into `events`, the
+ *  pair-sized scratch); the lanes stage 32 events at a time and lane 0 runs the paper's
+ *  chronological approximation over them; the lanes write the sums. Every sum is taken in the
+ *  order core::SplitEgoRisk takes it, so the results are the same bits. `Warp` gives Lanes,
+ *  Lane0, Sync and Increment: on the device each lane runs its own part (HostWarp emulates). */
+template <typename Warp>
+CRIT_HD void RiskRowBody(const Warp& warp, int g, const BatchLayout& b, const std::int16_t* first,
+                         const double* p_co, const char* ego_hits, int* events_scratch,
+                         const RiskRowScratch& s, double* ego_col, double* by_step,
+                         double* by_object) {
+  if (g >= b.total_ego) return;
+  if (!ego_hits[g]) {
+    warp.Lane0([&] { ego_col[g] = 0.0; });
+    return;
+  }
+  const int p = ProblemOf(b.ego_base, b.problems, g);
+  const int i = g - b.ego_base[p];
+  const int n_co = b.co_base[p + 1] - b.co_base[p];
+  const int n_obj = b.obj_base[p + 1] - b.obj_base[p];
+  const int steps = b.steps;
+  const size_t pairs = static_cast<size_t>(b.pair_base[p]) + static_cast<size_t>(i) * n_co;
+  const size_t objs = static_cast<size_t>(b.ego_obj_base[p]) + static_cast<size_t>(i) * n_obj;
+  const std::int16_t* row = first + pairs;
+  const int* object_of = b.co_object_of + b.co_base[p];
+  const double* pc = p_co + b.co_base[p];
+  int* events = events_scratch + pairs;
+  warp.Lanes([&](int lane) {
+    for (int n = lane; n <= steps; n += kWarp) s.hist[n] = 0;
+    for (int n = lane; n < steps; n += kWarp) s.by_step[n] = 0.0;
+    for (int o = lane; o < n_obj; o += kWarp) {
+      s.hit_mass[o] = 0.0;
+      s.by_object[o] = 0.0;
+    }
+  });
+  warp.Sync();
+  warp.Lanes([&](int lane) {
+    for (int j = lane; j < n_co; j += kWarp) {
+      if (row[j] > 0) warp.Increment(&s.hist[row[j]]);
+    }
+  });
+  warp.Sync();
+  warp.Lane0([&] {
+    int total = 0;
+    for (int n = 1; n <= steps; ++n) {  // counts -> start offsets
+      const int c = s.hist[n];
+      s.hist[n] = total;
+      total += c;
+    }
+    for (int j = 0; j < n_co; ++j) {
+      if (row[j] > 0) events[s.hist[row[j]]++] = j;
+    }
+    *s.total = total;
+  });
+  warp.Sync();
+  const int total = *s.total;
+  double p_row = 0.0;  // lane 0's sum
+  for (int base = 0; base < total; base += kWarp) {
+    const int count = total - base < kWarp ? total - base : kWarp;
+    warp.Lanes([&](int lane) {
+      if (lane < count) {
+        const int j = events[base + lane];
+        s.stage_o[lane] = object_of[j];
+        s.stage_p[lane] = pc[j];
+        s.stage_s[lane] = row[j];
+      }
+    });
+    warp.Sync();
+    warp.Lane0([&] {  // core::ChronologicalCollisionProbability, then SplitEgoRisk's split
+      for (int e = 0; e < count; ++e) {
+        const int o = s.stage_o[e];
+        double survive_others = 1.0;
+        for (int k = 0; k < n_obj; ++k) {
+          if (k != o) survive_others *= 1.0 - s.hit_mass[k];
+        }
+        const double c = s.stage_p[e] * survive_others;
+        s.hit_mass[o] += s.stage_p[e];
+        p_row += c;
+        s.by_step[s.stage_s[e] - 1] += c;
+        s.by_object[o] += c;
+      }
+    });
+    warp.Sync();
+  }
+  warp.Lanes([&](int lane) {
+    for (int n = lane; n < steps; n += kWarp)
+      by_step[static_cast<size_t>(g) * steps + n] = s.by_step[n];
+    for (int o = lane; o < n_obj; o += kWarp) by_object[objs + o] = s.by_object[o];
+  });
+  warp.Lane0([&] { ego_col[g] = p_row; });
 }
 
 /** Thread q (a risk output of the batch: per problem its steps, objects, then p_cra): summed
@@ -226,6 +373,47 @@ CRIT_HD void ReduceBody(int q, const BatchLayout& b, const double* p_ego, const 
     sum += p_ego[g] * v;
   }
   out[q] = sum;
+}
+
+/** One warp's shared memory in ReduceWarpBody: 32 terms at a time and whether each counts. */
+struct ReduceScratch {
+  double* term;  ///< kWarp
+  int* counts;   ///< kWarp
+};
+
+/** Warp q (a risk output of the batch): what ReduceBody computes, with the lanes reading 32 ego
+ *  hypotheses at a time (coalesced) and lane 0 adding their terms in ego order, so the sum is
+ *  the same bits as ReduceBody's and the CPU's. */
+template <typename Warp>
+CRIT_HD void ReduceWarpBody(const Warp& warp, int q, const BatchLayout& b, const double* p_ego,
+                            const double* ego_col, const double* by_step, const double* by_object,
+                            const ReduceScratch& s, double* out) {
+  const int p = ProblemOf(b.out_base, b.problems, q);
+  const int local = q - b.out_base[p];
+  const int steps = b.steps;
+  const int n_obj = b.obj_base[p + 1] - b.obj_base[p];
+  double sum = 0.0;  // lane 0's
+  for (int base = b.ego_base[p]; base < b.ego_base[p + 1]; base += kWarp) {
+    warp.Lanes([&](int lane) {
+      const int g = base + lane;
+      s.counts[lane] = g < b.ego_base[p + 1] && ego_col[g] != 0.0;
+      if (!s.counts[lane]) return;
+      const size_t objs =
+          static_cast<size_t>(b.ego_obj_base[p]) + static_cast<size_t>(g - b.ego_base[p]) * n_obj;
+      const double v = local < steps           ? by_step[static_cast<size_t>(g) * steps + local]
+                       : local < steps + n_obj ? by_object[objs + (local - steps)]
+                                               : ego_col[g];
+      s.term[lane] = p_ego[g] * v;
+    });
+    warp.Sync();
+    warp.Lane0([&] {
+      for (int lane = 0; lane < kWarp; ++lane) {
+        if (s.counts[lane]) sum += s.term[lane];
+      }
+    });
+    warp.Sync();
+  }
+  warp.Lane0([&] { out[q] = sum; });
 }
 
 }  // namespace criticality::cuda

@@ -30,8 +30,14 @@ struct Emulated {
   std::vector<char> ego_hits;  // CollisionBody's marks: the hits the host reads
 };
 
+// The risk kernels CudaBackend launches: a warp per ego hypothesis and per output (RiskRowBody,
+// ReduceWarpBody, their lanes emulated one after another), or a thread for each (RiskBody,
+// ReduceBody: where a row's scratch does not fit in shared memory, or to compare).
+enum class Risk { kWarpPerRow, kThreadPerRow };
+
 // What CudaBackend::RunBatch launches, as loops over the thread indices.
-Emulated RunKernelBodies(const std::vector<const internal::Problem*>& problems) {
+Emulated RunKernelBodies(const std::vector<const internal::Problem*>& problems,
+                         Risk risk = Risk::kWarpPerRow) {
   Emulated e;
   e.batch = cuda::MakeBatch(problems);
   const cuda::BatchHost& h = e.batch;
@@ -56,74 +62,104 @@ Emulated RunKernelBodies(const std::vector<const internal::Problem*>& problems) 
   e.ego_hits.assign(h.TotalEgo(), 0);
   for (long long k = 0; k < h.TotalPairs(); ++k) {
     cuda::CollisionBody(k, b, cuda::Poses{ex.data(), ey.data(), ec.data(), es.data()},
-                        cuda::Poses{cx.data(), cy.data(), cc.data(), cs.data()},
-                        ego_bounds.data(), co_bounds.data(), e.first.data(), e.ego_hits.data());
+                        cuda::Poses{cx.data(), cy.data(), cc.data(), cs.data()}, ego_bounds.data(),
+                        co_bounds.data(), e.first.data(), e.ego_hits.data());
   }
   const size_t ego_obj = std::max<long long>(h.TotalEgoObj(), 1);
   std::vector<int> hist(static_cast<size_t>(h.TotalEgo()) * (h.steps + 1)), events(h.TotalPairs());
   std::vector<double> contrib(h.TotalPairs()), mass(ego_obj), by_step(ne), by_obj(ego_obj);
   e.ego_col.assign(h.TotalEgo(), -1.0);
-  const cuda::RiskScratch w{hist.data(), events.data(), contrib.data(), mass.data()};
-  for (int g = 0; g < h.TotalEgo(); ++g) {
-    cuda::RiskBody(g, b, e.first.data(), h.p_co.data(), e.ego_hits.data(), w, e.ego_col.data(),
-                   by_step.data(), by_obj.data());
+  if (risk == Risk::kThreadPerRow) {
+    const cuda::RiskScratch w{hist.data(), events.data(), contrib.data(), mass.data()};
+    for (int g = 0; g < h.TotalEgo(); ++g) {
+      cuda::RiskBody(g, b, e.first.data(), h.p_co.data(), e.ego_hits.data(), w, e.ego_col.data(),
+                     by_step.data(), by_obj.data());
+    }
+  } else {
+    int max_obj = 0;
+    for (int p = 0; p < h.problems; ++p)
+      max_obj = std::max(max_obj, h.obj_base[p + 1] - h.obj_base[p]);
+    // One warp's shared memory, filled with garbage: the body must clear what it reads.
+    std::vector<double> shared(cuda::RiskRowBytes(h.steps, max_obj) / sizeof(double), 1e300);
+    const cuda::RiskRowScratch s = cuda::RiskRowScratchAt(shared.data(), h.steps, max_obj);
+    for (int g = 0; g < h.TotalEgo(); ++g) {
+      cuda::RiskRowBody(cuda::HostWarp{}, g, b, e.first.data(), h.p_co.data(), e.ego_hits.data(),
+                        events.data(), s, e.ego_col.data(), by_step.data(), by_obj.data());
+    }
   }
   e.out.assign(h.TotalOut(), -1.0);
-  for (int q = 0; q < h.TotalOut(); ++q) {
-    cuda::ReduceBody(q, b, h.p_ego.data(), e.ego_col.data(), by_step.data(), by_obj.data(),
-                     e.out.data());
+  if (risk == Risk::kThreadPerRow) {
+    for (int q = 0; q < h.TotalOut(); ++q) {
+      cuda::ReduceBody(q, b, h.p_ego.data(), e.ego_col.data(), by_step.data(), by_obj.data(),
+                       e.out.data());
+    }
+  } else {
+    std::vector<double> term(cuda::kWarp, 1e300);
+    std::vector<int> counts(cuda::kWarp, 1);
+    for (int q = 0; q < h.TotalOut(); ++q) {
+      cuda::ReduceWarpBody(cuda::HostWarp{}, q, b, h.p_ego.data(), e.ego_col.data(), by_step.data(),
+                           by_obj.data(), cuda::ReduceScratch{term.data(), counts.data()},
+                           e.out.data());
+    }
   }
   return e;
 }
 
 // Runs the scenes as one batch through the kernel bodies and compares every problem's part
 // with a separate CPU estimate of its scene.
+// Both risk kernels are checked.
 void ExpectBatchSameAsCpu(const std::vector<Scene>& scenes, const std::string& what,
                           const Params& params = Params{}) {
   std::vector<internal::Problem> problems;
   for (const Scene& scene : scenes) problems.push_back(internal::BuildProblem(scene, params));
   std::vector<const internal::Problem*> views;
   for (const internal::Problem& pb : problems) views.push_back(&pb);
-  const Emulated e = RunKernelBodies(views);
-  const cuda::BatchHost& h = e.batch;
   EstimatorOptions opt;
   opt.keep_pair_matrix = true;
   opt.simd = false;  // the kernel bodies run the scalar core, as the scalar fast path does
   Estimator cpu(params, opt);
-  for (size_t p = 0; p < scenes.size(); ++p) {
-    const std::string where = what + ", problem " + std::to_string(p);
-    const Result r = cpu.Estimate(scenes[p]);
-    const std::vector<std::int16_t> first(e.first.begin() + h.pair_base[p],
-                                          e.first.begin() + h.pair_base[p + 1]);
-    EXPECT_TRUE(first == r.first_collision_step) << where << ": pair matrices differ";
-    const int steps = h.steps, n_obj = static_cast<int>(problems[p].cos.size());
-    const double* out = e.out.data() + h.out_base[p];
-    for (int n = 0; n < steps; ++n)
-      EXPECT_EQ(out[n], r.first_collision_pmf[n]) << where << " step " << n;
-    for (int o = 0; o < n_obj; ++o)
-      EXPECT_EQ(out[steps + o], r.objects[o].contribution) << where << " object " << o;
-    EXPECT_EQ(out[steps + n_obj], r.p_collision) << where;
-    const std::vector<double> col(e.ego_col.begin() + h.ego_base[p],
-                                  e.ego_col.begin() + h.ego_base[p + 1]);
-    EXPECT_TRUE(col == r.ego_collision_probability) << where;
-    int free = 0;
-    for (int g = h.ego_base[p]; g < h.ego_base[p + 1]; ++g) free += e.ego_hits[g] == 0;
-    EXPECT_EQ(free, r.collision_free_ego_trajectories) << where;
-    // The outputs for decisions, from the device's per-ego results through the host code the
-    // CUDA backend runs after its kernels (FinishDecisionOutputs).
-    Result d;
-    d.ego_collision_probability = col;
-    internal::FinishDecisionOutputs(
-        problems[p], params,
-        std::vector<char>(e.ego_hits.begin() + h.ego_base[p], e.ego_hits.begin() + h.ego_base[p + 1]),
-        &d);
-    EXPECT_EQ(d.p_reference, r.p_reference) << where;
-    EXPECT_EQ(d.unavoidability, r.unavoidability) << where;
-    EXPECT_EQ(d.collision_free_ego_trajectories, r.collision_free_ego_trajectories) << where;
-    ASSERT_EQ(d.escape_routes.size(), r.escape_routes.size()) << where;
-    for (size_t k = 0; k < r.escape_routes.size(); ++k) {
-      EXPECT_EQ(d.escape_routes[k].ego_trajectory, r.escape_routes[k].ego_trajectory) << where;
-      EXPECT_EQ(d.escape_routes[k].x_m, r.escape_routes[k].x_m) << where;
+  std::vector<Result> cpu_results;
+  for (const Scene& scene : scenes) cpu_results.push_back(cpu.Estimate(scene));
+  for (const Risk risk : {Risk::kWarpPerRow, Risk::kThreadPerRow}) {
+    const Emulated e = RunKernelBodies(views, risk);
+    const cuda::BatchHost& h = e.batch;
+    for (size_t p = 0; p < scenes.size(); ++p) {
+      const std::string where =
+          what + (risk == Risk::kWarpPerRow ? " (warp per row)" : " (thread per row)") +
+          ", problem " + std::to_string(p);
+      const Result& r = cpu_results[p];
+      const std::vector<std::int16_t> first(e.first.begin() + h.pair_base[p],
+                                            e.first.begin() + h.pair_base[p + 1]);
+      EXPECT_TRUE(first == r.first_collision_step) << where << ": pair matrices differ";
+      const int steps = h.steps, n_obj = static_cast<int>(problems[p].cos.size());
+      const double* out = e.out.data() + h.out_base[p];
+      for (int n = 0; n < steps; ++n)
+        EXPECT_EQ(out[n], r.first_collision_pmf[n]) << where << " step " << n;
+      for (int o = 0; o < n_obj; ++o)
+        EXPECT_EQ(out[steps + o], r.objects[o].contribution) << where << " object " << o;
+      EXPECT_EQ(out[steps + n_obj], r.p_collision) << where;
+      const std::vector<double> col(e.ego_col.begin() + h.ego_base[p],
+                                    e.ego_col.begin() + h.ego_base[p + 1]);
+      EXPECT_TRUE(col == r.ego_collision_probability) << where;
+      int free = 0;
+      for (int g = h.ego_base[p]; g < h.ego_base[p + 1]; ++g) free += e.ego_hits[g] == 0;
+      EXPECT_EQ(free, r.collision_free_ego_trajectories) << where;
+      // The outputs for decisions, from the device's per-ego results through the host code the
+      // CUDA backend runs after its kernels (FinishDecisionOutputs).
+      Result d;
+      d.ego_collision_probability = col;
+      internal::FinishDecisionOutputs(problems[p], params,
+                                      std::vector<char>(e.ego_hits.begin() + h.ego_base[p],
+                                                        e.ego_hits.begin() + h.ego_base[p + 1]),
+                                      &d);
+      EXPECT_EQ(d.p_reference, r.p_reference) << where;
+      EXPECT_EQ(d.unavoidability, r.unavoidability) << where;
+      EXPECT_EQ(d.collision_free_ego_trajectories, r.collision_free_ego_trajectories) << where;
+      ASSERT_EQ(d.escape_routes.size(), r.escape_routes.size()) << where;
+      for (size_t k = 0; k < r.escape_routes.size(); ++k) {
+        EXPECT_EQ(d.escape_routes[k].ego_trajectory, r.escape_routes[k].ego_trajectory) << where;
+        EXPECT_EQ(d.escape_routes[k].x_m, r.escape_routes[k].x_m) << where;
+      }
     }
   }
 }
@@ -177,9 +213,9 @@ TEST(CudaKernelBodies, ProblemsWithCarriagesAreFoldedAndAssessedOnTheHostAsTheCp
   // bodies"): the kernels simulate and check every set, carriages included; the problem's
   // slice of the pair matrix is then folded and assessed on the host (AssessBodies), in a
   // batch beside problems assessed by the risk kernels.
-  const std::vector<Scene> scenes{
-      testing::WithTrailers(bench::PaperSceneS1(), RoadUser::kHeavy), bench::PaperSceneS1(),
-      testing::WithTrailers(bench::PaperSceneS2(), RoadUser::kRail)};
+  const std::vector<Scene> scenes{testing::WithTrailers(bench::PaperSceneS1(), RoadUser::kHeavy),
+                                  bench::PaperSceneS1(),
+                                  testing::WithTrailers(bench::PaperSceneS2(), RoadUser::kRail)};
   const Params params;
   std::vector<internal::Problem> problems;
   for (const Scene& scene : scenes) problems.push_back(internal::BuildProblem(scene, params));
@@ -220,7 +256,6 @@ TEST(CudaKernelBodies, ProblemOfSkipsEmptyRanges) {
   EXPECT_EQ(cuda::ProblemOf(base, 5, 11LL), 4);
 }
 
-
 // The bounds of a block are its centres' least and greatest x and y (a last, shorter block
 // included), and BlockApart holds only where every step of the block is farther apart than the
 // gap in x or in y: random walks, some close and some far, step-major as on the device.
@@ -241,13 +276,15 @@ TEST(CudaKernelBodies, BlocksApartHaveEveryStepApart) {
   const int blocks = cuda::BoundsBlocks(steps);
   ASSERT_EQ(blocks, 3);
   std::vector<double> bounds(static_cast<size_t>(blocks) * 4 * total);
-  for (int t = 0; t < total; ++t) cuda::BoundsBody(t, total, steps, x.data(), y.data(), bounds.data());
+  for (int t = 0; t < total; ++t)
+    cuda::BoundsBody(t, total, steps, x.data(), y.data(), bounds.data());
   const double gap = 4.0;
   int apart = 0, near = 0;
   for (int i = 0; i < total; ++i) {
     for (int j = 0; j < total; ++j) {
       for (int block = 0; block < blocks; ++block) {
-        const int begin = block * cuda::kBoundsBlock, end = std::min(steps, begin + cuda::kBoundsBlock);
+        const int begin = block * cuda::kBoundsBlock,
+                  end = std::min(steps, begin + cuda::kBoundsBlock);
         double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
         for (int n = begin; n < end; ++n) {
           x0 = std::min(x0, x[static_cast<size_t>(n) * total + i]);
@@ -261,7 +298,8 @@ TEST(CudaKernelBodies, BlocksApartHaveEveryStepApart) {
         EXPECT_EQ(bounds[static_cast<size_t>(4 * block + 3) * total + i], y1);
         bool every_step_apart = true;
         for (int n = begin; n < end; ++n) {
-          const size_t a = static_cast<size_t>(n) * total + i, c = static_cast<size_t>(n) * total + j;
+          const size_t a = static_cast<size_t>(n) * total + i,
+                       c = static_cast<size_t>(n) * total + j;
           every_step_apart &= std::fabs(x[c] - x[a]) > gap || std::fabs(y[c] - y[a]) > gap;
         }
         const bool skipped =
