@@ -77,6 +77,10 @@ struct HypothesisSet {
    *  object drives, which puts it where that update puts the object (ShiftAlongCourse and
    *  ShiftAlongPath in trajectory_generation.h). Per set, so that a batch may mix scenes. */
   double position_lead{0.0};
+  /** The world looks for collisions only every this many steps (its own step; 0 or 1: every
+   *  step): the poses in between repeat the pose of the last step it looks at, the pose now
+   *  until its first (Params::collisions_at_world_steps). */
+  int pose_hold_steps{0};
   /** Its box is centred on the chord of its path (Scene::bodies_on_path): each stored pose's
    *  centre lies PathSagitta(h, course curvature) toward the turn's centre from the model's,
    *  its heading the model's, and the model's centre starts that far outside the measured one

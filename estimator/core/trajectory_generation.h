@@ -46,8 +46,8 @@ constexpr double kMaxShiftTurnRad = 1.5707963267948966;
  *  course alone, a car braking through a right turn at 1 s steps was put out to the left of
  *  its way, into the opposite lane (bench/RESULTS.md, 2026-12-04, "the Euler update in a
  *  turn"). kappa = 0: ShiftAlongCourse exactly. */
-CRIT_HD void ShiftAlongPath(double lead_s, double v, double v0, double kappa, double cx,
-                            double cy, double* x, double* y) {
+CRIT_HD void ShiftAlongPath(double lead_s, double v, double v0, double kappa, double cx, double cy,
+                            double* x, double* y) {
   const double d = (v - v0) * lead_s;
   const double phi = Clamp(kappa * d, -kMaxShiftTurnRad, kMaxShiftTurnRad);
   if (phi == 0.0) {
@@ -91,6 +91,9 @@ struct SimulationState {
   int held_section{-2};
   double travelled{0.0};  ///< distance its centre has covered (for HypothesisSet::leave_distance)
   double track_x{0.0};    ///< on a track: where it is along reference_path (the path's frame)
+  /** HypothesisSet::pose_hold_steps: the pose (scene frame) the poses in between repeat, and
+   *  (for the CPU's SIMD path, which stores them) its heading's cos and sin. */
+  double held_x{0.0}, held_y{0.0}, held_yaw{0.0}, held_c{1.0}, held_s{0.0};
 };
 
 /** Where the poses of a vehicle that has left the scene go (HypothesisSet::leave_distance):
@@ -111,6 +114,13 @@ CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h,
   st.s.ay = h.v0 * h.yaw_rate0;
   st.steer = InitialSteer(h, cfg.controller);
   st.track_x = h.track_x0;
+  st.held_x = h.X_WL.x;
+  st.held_y = h.X_WL.y;
+  st.held_yaw = h.X_WL.yaw;
+  if (h.pose_hold_steps > 1) {
+    st.held_c = std::cos(h.X_WL.yaw);
+    st.held_s = std::sin(h.X_WL.yaw);
+  }
   if (h.body_on_path && !h.on_track) {  // the measured box is the chord: its path lies outside
     const double e = PathSagitta(h, BodyCurvature(h.yaw_rate0, h.v0));
     st.s.x = e * std::sin(h.beta0);
@@ -194,8 +204,7 @@ CRIT_HD void StorePose(const HypothesisSet& h, const StepContext& c, const Simul
   } else {
     double px = s.x, py = s.y;
     if (h.position_lead > 0.0) {
-      ShiftAlongPath(h.position_lead, s.v, h.v0, BodyCurvature(s.yaw_rate, s.v), cx, cy, &px,
-                     &py);
+      ShiftAlongPath(h.position_lead, s.v, h.v0, BodyCurvature(s.yaw_rate, s.v), cx, cy, &px, &py);
     }
     if (h.body_on_path && !h.on_track) {
       const double e = PathSagitta(h, BodyCurvature(s.yaw_rate, s.v));
@@ -208,11 +217,27 @@ CRIT_HD void StorePose(const HypothesisSet& h, const StepContext& c, const Simul
   *yaw = h.X_WL.yaw + s.yaw;
 }
 
+/** HypothesisSet::pose_hold_steps: after step n, the pose the world would see. At the steps
+ *  it looks at, the pose just stored, kept in `held`; in between, the last one kept. */
+CRIT_HD void HoldPose(int hold_steps, int n, double* held_x, double* held_y, double* held_yaw,
+                      double* x, double* y, double* yaw) {
+  if (hold_steps <= 1) return;
+  if ((n + 1) % hold_steps == 0) {
+    *held_x = *x;
+    *held_y = *y;
+    *held_yaw = *yaw;
+  } else {
+    *x = *held_x;
+    *y = *held_y;
+    *yaw = *held_yaw;
+  }
+}
+
 /** Advances a VEHICLE hypothesis (profile, path) by step n (time n tau to (n+1) tau) from
  *  `st` and writes the pose after it (scene frame) to *x, *y, *yaw. */
-CRIT_HD void VehicleStep(const HypothesisSet& h, const SimulationConfig& cfg, int profile,
-                         int path, int n, StepContext* ctx, SimulationState* st, double* x,
-                         double* y, double* yaw) {
+CRIT_HD void VehicleStep(const HypothesisSet& h, const SimulationConfig& cfg, int profile, int path,
+                         int n, StepContext* ctx, SimulationState* st, double* x, double* y,
+                         double* yaw) {
   const double tau = cfg.tau;
   const double target = h.profile_target[profile];
   const double mu_g = ctx->mu_g;
@@ -278,6 +303,7 @@ CRIT_HD void VehicleStep(const HypothesisSet& h, const SimulationConfig& cfg, in
   st->travelled += s.v * tau;
   // The course of this step (cy, sy, cb, sb from its start).
   StorePose(h, *ctx, *st, cy * cb - sy * sb, sy * cb + cy * sb, x, y, yaw);
+  HoldPose(h.pose_hold_steps, n, &st->held_x, &st->held_y, &st->held_yaw, x, y, yaw);
 }
 
 /** Advances a VEHICLE hypothesis (profile, path) over steps [n_begin, n_end) from `st`,
@@ -322,14 +348,16 @@ CRIT_HD void SimulateHypothesis(const HypothesisSet& h, const SimulationConfig& 
     const double v0 = Clamp(h.v0, 0.0, h.max_speed);
     const double ch = std::cos(heading), sh = std::sin(heading);
     double px = h.X_WL.x, py = h.X_WL.y, v = v0;
+    double held_x = h.X_WL.x, held_y = h.X_WL.y, held_yaw = h.X_WL.yaw;
     for (int n = 0; n < cfg.n_steps; ++n) {
       PedestrianStep(heading, target, h.max_speed, cfg.tau, &px, &py, &v);
       const size_t at = static_cast<size_t>(n) * stride;
-      double sx = px, sy = py;
+      double sx = px, sy = py, syaw = heading;
       if (h.position_lead > 0.0) ShiftAlongCourse(h.position_lead, v, v0, ch, sh, &sx, &sy);
+      HoldPose(h.pose_hold_steps, n, &held_x, &held_y, &held_yaw, &sx, &sy, &syaw);
       x[at] = sx;
       y[at] = sy;
-      yaw[at] = heading;
+      yaw[at] = syaw;
     }
     return;
   }

@@ -244,11 +244,37 @@ Derivative<V> OneTrack(D d, const core::VehicleParams& p, V v, V beta, V yr, V s
   return out;
 }
 
-// Step n's poses of lanes [first, first + count) into the span (c, s unless bc is null).
+// Step n's poses of lanes [first, first + count) into the span (c, s unless bc is null). With
+// held poses (HypothesisSet::pose_hold_steps, core::HoldPose), a step the world does not look at
+// stores each lane's held pose, and a step it looks at keeps the pose as the lane's held one.
 HWY_INLINE void StorePoses(SiblingSpan* span, int first, int count, int n, const double* bx,
                            const double* by, const double* byaw, const double* bc,
                            const double* bs) {
+  const int hold = span->h->pose_hold_steps;
+  if (hold > 1 && (n + 1) % hold != 0) {
+    for (int l = 0; l < count; ++l) {
+      const core::SimulationState& st = span->state[first + l];
+      span->x[first + l][n] = st.held_x;
+      span->y[first + l][n] = st.held_y;
+      span->yaw[first + l][n] = st.held_yaw;
+      if (bc) {
+        span->c[first + l][n] = st.held_c;
+        span->s[first + l][n] = st.held_s;
+      }
+    }
+    return;
+  }
   for (int l = 0; l < count; ++l) {
+    if (hold > 1) {
+      core::SimulationState& st = span->state[first + l];
+      st.held_x = bx[l];
+      st.held_y = by[l];
+      st.held_yaw = byaw[l];
+      if (bc) {
+        st.held_c = bc[l];
+        st.held_s = bs[l];
+      }
+    }
     span->x[first + l][n] = bx[l];
     span->y[first + l][n] = by[l];
     span->yaw[first + l][n] = byaw[l];
@@ -287,7 +313,8 @@ void HoldPoses(SiblingSpan* span, int first, int count, int n, const double* bx,
 // lanes' end states keep the values of the step where the standstill began (the children of a
 // tree node start from them, and stand as well: their profile is the same).
 bool StandstillMayHold(const core::HypothesisSet& h) {
-  return h.seam_speed > 0.0 && h.rate >= 0.0 && (h.position_lead <= 0.0 || h.v0 == 0.0);
+  return h.seam_speed > 0.0 && h.rate >= 0.0 && (h.position_lead <= 0.0 || h.v0 == 0.0) &&
+         (h.pose_hold_steps <= 1 || h.v0 == 0.0);  // held poses: the same pose throughout
 }
 
 // Whether every lane's state after a step is at rest (the rest of the rule: StandstillMayHold

@@ -231,9 +231,8 @@ double CurveAccel(double v, const core::Parabola& centre, const Params& p) {
 // less speed (Params::curve_speed_reference); higher where the vehicle brakes harder than any
 // reason to brake that the caller knows (Params::release_unexplained_braking).
 double ReferenceAccel(const ObjectState& s, const core::Parabola& centre, const Params& p) {
-  const double expected = p.expected_accel_reference && s.expected_accel_mps2
-                              ? *s.expected_accel_mps2
-                              : HUGE_VAL;
+  const double expected =
+      p.expected_accel_reference && s.expected_accel_mps2 ? *s.expected_accel_mps2 : HUGE_VAL;
   const double curve = CurveAccel(s.speed_mps, centre, p);
   if (p.release_unexplained_braking && s.braking_causes_known) {
     const double asked = std::fmin(0.0, std::fmin(expected, curve));
@@ -261,8 +260,7 @@ struct ProfileScore {
 // it; a vehicle still driving straight at the turn gets no feed-forward, which would turn it
 // in early across the lanes beside it.
 constexpr double kFeedforwardMinYawRate = 0.1;  // rad/s
-bool TurningAlongLane(const core::HypothesisSet& h, const core::Parabola& centre,
-                      const Params& p) {
+bool TurningAlongLane(const core::HypothesisSet& h, const core::Parabola& centre, const Params& p) {
   if (!p.steer_curvature_feedforward || !p.lateral_controller) return false;
   const double lane_turn = centre.a;  // the sign of its curvature (a frame keeps its sense)
   return std::fabs(h.yaw_rate0) >= kFeedforwardMinYawRate && lane_turn * h.yaw_rate0 > 0.0;
@@ -302,7 +300,8 @@ std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool 
   h->steer_feedforward = TurningAlongLane(*h, centre, p);
   std::vector<double> offset(static_cast<size_t>(n_inst) * n_lat);
   for (int k = 0; k < n_inst; ++k) {
-    const double x = core::XAfterArc(centre, 0.0, ReferenceDistance(h->v0, a_ref, p.path_sample_times_s[k]));
+    const double x =
+        core::XAfterArc(centre, 0.0, ReferenceDistance(h->v0, a_ref, p.path_sample_times_s[k]));
     for (int l = 0; l < n_lat; ++l) {
       offset[k * n_lat + l] = std::fabs(samples[l].curve.Eval(x) - centre.Eval(x));
     }
@@ -699,8 +698,7 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   const LaneSet ego_lanes = params.road_model
                                 ? CompleteEgoLanes(scene.ego, params)
                                 : VirtualLaneSet(scene.ego.state, params.virtual_lane_width_m);
-  const FittedLanes ego_fitted =
-      FitLanes(ego_lanes, "scene.ego.lanes", params);
+  const FittedLanes ego_fitted = FitLanes(ego_lanes, "scene.ego.lanes", params);
 
   // The ego: two-track model, every combination of path sections.
   {
@@ -879,8 +877,8 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     };
     // Params::footway_pedestrians: outside the ego's lanes on a footway it keeps to, every
     // crossing onto them counts; otherwise against the straight-on heading's.
-    const bool keeps_off = params.footway_pedestrians && ped.stays_on_footway &&
-                           !InsideLanes(ego_fitted, px, py);
+    const bool keeps_off =
+        params.footway_pedestrians && ped.stays_on_footway && !InsideLanes(ego_fitted, px, py);
     const int straight_on = keeps_off ? 0 : crossings(ped.state.yaw_rad);
     std::vector<PathScore> headings(h.n_paths);
     for (int l = 0; l < h.n_paths; ++l) {
@@ -922,6 +920,14 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
   // The world's position update (estimator/ALGORITHM.md, "The simulator's position update").
   pb.ego.position_lead = 0.5 * scene.euler_update_step_s;
   for (core::HypothesisSet& h : pb.cos) h.position_lead = 0.5 * scene.euler_update_step_s;
+  if (params.collisions_at_world_steps && scene.euler_update_step_s > 0.0) {
+    const double ratio = scene.euler_update_step_s / pb.sim.tau;
+    const int hold = static_cast<int>(std::lround(ratio));
+    if (hold > 1 && std::fabs(ratio - hold) < 1e-6 * ratio) {
+      pb.ego.pose_hold_steps = hold;
+      for (core::HypothesisSet& h : pb.cos) h.pose_hold_steps = hold;
+    }
+  }
   // Where the world puts bodies in a turn (Scene::bodies_on_path).
   pb.ego.body_on_path = scene.bodies_on_path;
   for (core::HypothesisSet& h : pb.cos)

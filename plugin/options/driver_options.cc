@@ -179,6 +179,7 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
     o->scenes.braking_causes = true;
   }
   if (raw.ego_stops) p.ego_stop_obligations = true;
+  if (raw.no_world_step_collisions) p.collisions_at_world_steps = false;
   if (raw.no_crossing_obligations) o->scenes.crossing_obligations = false;
   if (raw.no_crossing_stops) o->scenes.crossing_stops = false;
   if (raw.no_yield_stops) o->scenes.yield_stops = false;

@@ -184,6 +184,11 @@ void OptionTable::Estimator(DriverOptions* o) {
       "leader, its stop line and its lane's curve ask is expected to release its brake (its "
       "reference holds its speed, or what those ask) instead of braking on for the whole "
       "horizon (estimator Params::release_unexplained_braking)")(
+      "no-world-step-collisions", po::bool_switch(&raw.no_world_step_collisions),
+      "ablation (ours): a pair of hypotheses collides wherever it overlaps, not only at SUMO's "
+      "steps, where SUMO looks for collisions (by default, with SUMO's Euler position update, "
+      "the estimator reads SUMO's step length for this; estimator "
+      "Params::collisions_at_world_steps)")(
       "no-car-following", po::bool_switch(&raw.no_car_following),
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(

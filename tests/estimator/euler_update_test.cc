@@ -164,5 +164,84 @@ TEST(EulerUpdate, SumosCoarseStepsStopTheEgoShortOfAStoppedCar) {
   EXPECT_LT(coarse.p_collision, continuous.p_collision);
 }
 
+// Params::collisions_at_world_steps (HypothesisSet::pose_hold_steps): between the world's steps
+// the poses repeat the last pose the world sees (before its first step, the pose now); at its
+// steps they are the poses without the hold.
+TEST(EulerUpdate, HeldPosesRepeatTheLastPoseTheWorldSees) {
+  core::HypothesisSet h = BrakingVehicle(13.5, 4.5);
+  h.X_WL = core::Pose2{3.0, -2.0, 0.25};
+  h.position_lead = 0.5;
+  core::SimulationConfig cfg;
+  cfg.tau = 0.02;
+  cfg.n_steps = 150;
+  std::vector<double> x(150), y(150), yaw(150), hx(150), hy(150), hyaw(150);
+  core::SimulateHypothesis(h, cfg, 0, 0, x.data(), y.data(), yaw.data());
+  h.pose_hold_steps = 50;  // the world's 1 s steps
+  core::SimulateHypothesis(h, cfg, 0, 0, hx.data(), hy.data(), hyaw.data());
+  for (int n = 0; n < 150; ++n) {
+    const int seen = (n + 1) / 50 * 50 - 1;  // the last pose the world saw (-1: the pose now)
+    const double ex = seen < 0 ? 3.0 : x[seen], ey = seen < 0 ? -2.0 : y[seen];
+    const double eyaw = seen < 0 ? 0.25 : yaw[seen];
+    EXPECT_EQ(hx[n], ex) << n;
+    EXPECT_EQ(hy[n], ey) << n;
+    EXPECT_EQ(hyaw[n], eyaw) << n;
+  }
+  EXPECT_GT(x[49], x[0] + 5.0);  // it moves: the hold is seen
+  // A walker holds too.
+  core::HypothesisSet w;
+  w.model = core::MotionModelKind::kPedestrian;
+  w.X_WL = core::Pose2{1.0, 1.0, 0.0};
+  w.v0 = 1.4;
+  w.max_speed = 2.7;
+  w.n_profiles = 1;
+  w.n_paths = 1;
+  w.heading[0] = 0.5 * M_PI;
+  w.pose_hold_steps = 50;
+  core::SimulateHypothesis(w, cfg, 0, 0, hx.data(), hy.data(), hyaw.data());
+  EXPECT_EQ(hy[48], 1.0);
+  EXPECT_NEAR(hy[49], 1.0 + 1.4, 0.05);
+  EXPECT_EQ(hy[98], hy[49]);
+}
+
+// A car crosses the ego's way at 15 m/s, 8 m ahead of the ego (at 9 m/s) and 10 m to its side:
+// it passes through the ego's front between two of SUMO's 1 s steps. Checked every 20 ms, the
+// ego's hypotheses meet it; at SUMO's steps it is short of their way (the pose now) and then
+// past it, which is all SUMO would see.
+Scene CrossingBetweenSteps() {
+  Scene s;
+  s.ego.state.speed_mps = 9.0;
+  s.ego.length_m = 4.6;
+  Vehicle v;
+  v.id = "crossing";
+  v.length_m = 4.6;
+  v.state.x_m = 8.0;
+  v.state.y_m = -10.0;
+  v.state.yaw_rad = 0.5 * M_PI;
+  v.state.speed_mps = 15.0;
+  s.vehicles.push_back(v);
+  s.euler_update_step_s = 1.0;
+  return s;
+}
+
+TEST(EulerUpdate, APairCollidesAtTheWorldsStepsUnlessTurnedOff) {
+  Params at_steps, every_step;
+  every_step.collisions_at_world_steps = false;
+  EXPECT_TRUE(at_steps.collisions_at_world_steps);  // the default
+  const Result every = Estimator{every_step}.Estimate(CrossingBetweenSteps());
+  const Result seen = Estimator{at_steps}.Estimate(CrossingBetweenSteps());
+  EXPECT_GT(every.p_collision, 0.5);
+  EXPECT_LT(seen.p_collision, 0.5 * every.p_collision);
+  // Continuous motion (no world step) and a world step that is no multiple of the estimator's
+  // step leave every step checked.
+  Scene continuous = CrossingBetweenSteps();
+  continuous.euler_update_step_s = 0.0;
+  Scene odd = CrossingBetweenSteps();
+  odd.euler_update_step_s = 0.25;  // 12.5 estimator steps
+  EXPECT_EQ(Estimator{at_steps}.Estimate(continuous).p_collision,
+            Estimator{every_step}.Estimate(continuous).p_collision);
+  EXPECT_EQ(Estimator{at_steps}.Estimate(odd).p_collision,
+            Estimator{every_step}.Estimate(odd).p_collision);
+}
+
 }  // namespace
 }  // namespace criticality

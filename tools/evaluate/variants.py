@@ -42,6 +42,10 @@ VARIANTS = [
             "ours with braking that no known cause asks for released in the reference "
             "(--release-braking)",
             {"act": "warn", "release-braking": "true"}),
+    Variant("no-world-step-collisions",
+            "ours with collisions counted at every step, not only at SUMO's "
+            "(--no-world-step-collisions)",
+            {"act": "warn", "no-world-step-collisions": "true"}),
     Variant("ego-stops",
             "ours with the ego's own credible stop line as its reference (--ego-stops)",
             {"act": "warn", "ego-stops": "true"}),

@@ -309,6 +309,17 @@ struct Params {
    *  released. An experiment, off: judged on the violation family's held-out set it warned no
    *  collision more (bench/RESULTS.md, 2026-12-04, "braking that has no cause"). */
   bool release_unexplained_braking{false};
+  /** Collisions only where the world looks for them: with a simulator's Euler step
+   *  (Scene::euler_update_step_s, a multiple of step_s), the poses between its steps repeat the
+   *  pose of its last step (HypothesisSet::pose_hold_steps), so that a pair counts as colliding
+   *  only if it overlaps at a step the simulator checks. SUMO at 1 s steps moves a vehicle
+   *  v(k+1) dt in a step and can stop it at its yield line with no displacement, while a
+   *  truck's body sweeps past its nose between two steps: every ego hypothesis collided in
+   *  between, none at the steps (bench/RESULTS.md, 2026-12-04, "collisions where the world
+   *  looks"). On the held-out networks it halved the false alarms and warned every collision it
+   *  warned before. Reads what only the simulator knows (its step); driver
+   *  --no-world-step-collisions turns it off. No effect on scenes without an Euler step. */
+  bool collisions_at_world_steps{true};
   /** See curve_speed_reference. 5.5 m/s^2: the lateral acceleration from which SUMO's
    *  netconvert sets turning speeds (junctions.limit-turn-speed), above what drivers choose in
    *  comfort (about 0.3-0.4 g), so that only a speed that is too high for any normal driving

@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "../test_scenes.h"
 #include "bench/discrimination_scenes.h"
 #include "bench/paper_scenes.h"
 #include "cpu/cpu_backend.h"
 #include "cpu/reference_backend.h"
 #include "criticality/estimator.h"
 #include "src/problem.h"
-#include "../test_scenes.h"
 
 namespace criticality {
 namespace {
@@ -37,11 +37,12 @@ double MaxPoseDifference(const Problem& pb, const core::HypothesisSet& h,
     internal::SiblingSpan span =
         internal::SpanOf(h, pb.sim, profile, 0, steps, static_cast<int>(paths.size()));
     std::vector<std::vector<double>> x(paths.size(), std::vector<double>(steps)), y = x, yaw = x,
-                                     c = x, sn = x;
+                                                                                  c = x, sn = x;
     std::vector<double> rx(steps), ry(steps), ryaw(steps);
     for (size_t l = 0; l < paths.size(); ++l) {
-      internal::SetLane(&span, static_cast<int>(l), paths[l], core::InitialSimulationState(h, pb.sim),
-                        x[l].data(), y[l].data(), yaw[l].data(), c[l].data(), sn[l].data());
+      internal::SetLane(&span, static_cast<int>(l), paths[l],
+                        core::InitialSimulationState(h, pb.sim), x[l].data(), y[l].data(),
+                        yaw[l].data(), c[l].data(), sn[l].data());
     }
     internal::SimulateSiblingSteps(&span);
     for (size_t l = 0; l < paths.size(); ++l) {
@@ -88,35 +89,75 @@ TEST(SiblingSteps, AppliesToVehiclesWithTheControllerOn) {
 
 TEST(SiblingSteps, LanesFollowTheScalarStepWithinRounding) {
   std::vector<Scene> scenes = {bench::PaperSceneS1(), bench::PaperSceneS2()};
-  for (unsigned seed = 1; seed <= 8; ++seed) scenes.push_back(testing::RandomScene(seed, 4, 2, seed % 2));
+  for (unsigned seed = 1; seed <= 8; ++seed)
+    scenes.push_back(testing::RandomScene(seed, 4, 2, seed % 2));
   // Slow egos: braking profiles cross the seam speed (the kinematic model, run lane by lane).
   Scene slow = bench::PaperSceneS1();
   slow.ego.state.speed_mps = 2.6;
   scenes.push_back(slow);
-  for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) scenes.push_back(d.scene);
+  for (const bench::DiscriminationScene& d : bench::DiscriminationScenes())
+    scenes.push_back(d.scene);
   int checked = 0, checked_others = 0;
   for (const Params& params : {Params{}, ParamsPreset("paper-literal")}) {
-  for (const Scene& s : scenes) {
-    const Problem pb = BuildProblem(s, params);
-    if (!internal::SiblingStepsApply(pb.ego, pb.sim)) continue;
-    // 1, 3, 7 (one AVX-512 register, two AVX2 ones) and 11 lanes (more than one register).
-    for (int count : {1, 3, 7, 11}) {
-      EXPECT_LT(MaxPoseDifference(pb, pb.ego, SpreadPaths(pb.ego, count)), 1e-9)
-          << s.ego.id << " " << count << " lanes";
+    for (const Scene& s : scenes) {
+      const Problem pb = BuildProblem(s, params);
+      if (!internal::SiblingStepsApply(pb.ego, pb.sim)) continue;
+      // 1, 3, 7 (one AVX-512 register, two AVX2 ones) and 11 lanes (more than one register).
+      for (int count : {1, 3, 7, 11}) {
+        EXPECT_LT(MaxPoseDifference(pb, pb.ego, SpreadPaths(pb.ego, count)), 1e-9)
+            << s.ego.id << " " << count << " lanes";
+      }
+      ++checked;
+      // The other vehicles: every path of each profile (one-track, friction-limited by default).
+      for (const core::HypothesisSet& h : pb.cos) {
+        if (!internal::SiblingStepsApply(h, pb.sim)) continue;
+        std::vector<int> paths;
+        for (int l = 0; l < h.n_paths; ++l) paths.push_back(l);
+        EXPECT_LT(MaxPoseDifference(pb, h, paths), 1e-9) << s.ego.id << " other vehicle";
+        ++checked_others;
+      }
     }
-    ++checked;
-    // The other vehicles: every path of each profile (one-track, friction-limited by default).
-    for (const core::HypothesisSet& h : pb.cos) {
-      if (!internal::SiblingStepsApply(h, pb.sim)) continue;
-      std::vector<int> paths;
-      for (int l = 0; l < h.n_paths; ++l) paths.push_back(l);
-      EXPECT_LT(MaxPoseDifference(pb, h, paths), 1e-9) << s.ego.id << " other vehicle";
-      ++checked_others;
-    }
-  }
   }
   EXPECT_GE(checked, 40);
   EXPECT_GE(checked_others, 100);
+}
+
+// Held poses (Params::collisions_at_world_steps with SUMO's 1 s and 0.1 s Euler steps): the
+// lanes store the held pose between the world's steps as core::HoldPose does, across the spans
+// of a tree (the held pose travels in the lane's state).
+TEST(SiblingSteps, HeldPosesFollowTheScalarStepWithinRounding) {
+  Params at_steps;
+  at_steps.collisions_at_world_steps = true;
+  int checked = 0;
+  for (double world_step : {1.0, 0.1}) {
+    for (unsigned seed = 1; seed <= 6; ++seed) {
+      Scene s = testing::RandomScene(seed, 4, 0, seed % 2);
+      s.euler_update_step_s = world_step;
+      const Problem pb = BuildProblem(s, at_steps);
+      ASSERT_EQ(pb.ego.pose_hold_steps, world_step == 1.0 ? 50 : 5);
+      for (int count : {1, 7, 11})
+        EXPECT_LT(MaxPoseDifference(pb, pb.ego, SpreadPaths(pb.ego, count)), 1e-9) << seed;
+      for (const core::HypothesisSet& h : pb.cos) {
+        if (!internal::SiblingStepsApply(h, pb.sim)) continue;
+        std::vector<int> paths;
+        for (int l = 0; l < h.n_paths; ++l) paths.push_back(l);
+        EXPECT_LT(MaxPoseDifference(pb, h, paths), 1e-9) << seed << " other vehicle";
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 12);
+  // The whole estimate, tree and all: the SIMD path agrees with the scalar one.
+  EstimatorOptions scalar_opt;
+  scalar_opt.simd = false;
+  Estimator scalar(at_steps, scalar_opt), simd(at_steps);
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    Scene s = testing::RandomScene(seed, 4, 2, seed % 2);
+    s.euler_update_step_s = 1.0;
+    const Result a = scalar.Estimate(s), b = simd.Estimate(s);
+    EXPECT_NEAR(a.p_collision, b.p_collision, 1e-6) << seed;
+    EXPECT_NEAR(a.unavoidability, b.unavoidability, 1e-6) << seed;
+  }
 }
 
 // Bodies on their path (Scene::bodies_on_path): the chord's shift and the course's heading in
