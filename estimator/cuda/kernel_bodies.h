@@ -180,6 +180,23 @@ CRIT_HD void CollisionBody(long long k, const BatchLayout& b, const Poses& ego, 
   if (hit) ego_hits[i] = 1;
 }
 
+/** Where ego hypothesis g's row of the batch lives: its problem, its index there, the
+ *  problem's CO trajectories and objects, and the row's first pair and first ego x object. */
+struct EgoRow {
+  int p, i, n_co, n_obj;
+  size_t pairs, objs;
+};
+CRIT_HD EgoRow EgoRowOf(const BatchLayout& b, int g) {
+  EgoRow r;
+  r.p = ProblemOf(b.ego_base, b.problems, g);
+  r.i = g - b.ego_base[r.p];
+  r.n_co = b.co_base[r.p + 1] - b.co_base[r.p];
+  r.n_obj = b.obj_base[r.p + 1] - b.obj_base[r.p];
+  r.pairs = static_cast<size_t>(b.pair_base[r.p]) + static_cast<size_t>(r.i) * r.n_co;
+  r.objs = static_cast<size_t>(b.ego_obj_base[r.p]) + static_cast<size_t>(r.i) * r.n_obj;
+  return r;
+}
+
 /** Thread g (an ego hypothesis of the batch): its colliding CO trajectories in chronological
  *  order (counting sort by step, stable in j), the paper's chronological approximation, and
  *  its split over steps and objects (not yet weighted by p_EGO). A hypothesis that no pair
@@ -192,13 +209,9 @@ CRIT_HD void RiskBody(int g, const BatchLayout& b, const std::int16_t* first, co
     ego_col[g] = 0.0;
     return;
   }
-  const int p = ProblemOf(b.ego_base, b.problems, g);
-  const int i = g - b.ego_base[p];
-  const int n_co = b.co_base[p + 1] - b.co_base[p];
-  const int n_obj = b.obj_base[p + 1] - b.obj_base[p];
-  const int steps = b.steps;
-  const size_t pairs = static_cast<size_t>(b.pair_base[p]) + static_cast<size_t>(i) * n_co;
-  const size_t objs = static_cast<size_t>(b.ego_obj_base[p]) + static_cast<size_t>(i) * n_obj;
+  const EgoRow r = EgoRowOf(b, g);
+  const int p = r.p, n_co = r.n_co, n_obj = r.n_obj, steps = b.steps;
+  const size_t pairs = r.pairs, objs = r.objs;
   const int* object_of = b.co_object_of + b.co_base[p];
   int n_events = 0;
   ego_col[g] = core::SplitEgoRisk(
@@ -278,13 +291,9 @@ CRIT_HD void RiskRowBody(const Warp& warp, int g, const BatchLayout& b, const st
     warp.Lane0([&] { ego_col[g] = 0.0; });
     return;
   }
-  const int p = ProblemOf(b.ego_base, b.problems, g);
-  const int i = g - b.ego_base[p];
-  const int n_co = b.co_base[p + 1] - b.co_base[p];
-  const int n_obj = b.obj_base[p + 1] - b.obj_base[p];
-  const int steps = b.steps;
-  const size_t pairs = static_cast<size_t>(b.pair_base[p]) + static_cast<size_t>(i) * n_co;
-  const size_t objs = static_cast<size_t>(b.ego_obj_base[p]) + static_cast<size_t>(i) * n_obj;
+  const EgoRow r = EgoRowOf(b, g);
+  const int p = r.p, n_co = r.n_co, n_obj = r.n_obj, steps = b.steps;
+  const size_t pairs = r.pairs, objs = r.objs;
   const std::int16_t* row = first + pairs;
   const int* object_of = b.co_object_of + b.co_base[p];
   const double* pc = p_co + b.co_base[p];

@@ -63,6 +63,20 @@ double MaxPoseDifference(const Problem& pb, const core::HypothesisSet& h,
   return worst;
 }
 
+// Every path of each other vehicle the SIMD path takes against the scalar step; the number of
+// vehicles checked.
+int ExpectOthersFollowTheScalarStep(const Problem& pb, const std::string& what) {
+  int checked = 0;
+  for (const core::HypothesisSet& h : pb.cos) {
+    if (!internal::SiblingStepsApply(h, pb.sim)) continue;
+    std::vector<int> paths;
+    for (int l = 0; l < h.n_paths; ++l) paths.push_back(l);
+    EXPECT_LT(MaxPoseDifference(pb, h, paths), 1e-9) << what << " other vehicle";
+    ++checked;
+  }
+  return checked;
+}
+
 std::vector<int> SpreadPaths(const core::HypothesisSet& h, int count) {
   std::vector<int> paths;
   for (int l = 0; l < count; ++l) paths.push_back((l * 97) % h.n_paths);
@@ -137,13 +151,7 @@ TEST(SiblingSteps, HeldPosesFollowTheScalarStepWithinRounding) {
       ASSERT_EQ(pb.ego.pose_hold_steps, world_step == 1.0 ? 50 : 5);
       for (int count : {1, 7, 11})
         EXPECT_LT(MaxPoseDifference(pb, pb.ego, SpreadPaths(pb.ego, count)), 1e-9) << seed;
-      for (const core::HypothesisSet& h : pb.cos) {
-        if (!internal::SiblingStepsApply(h, pb.sim)) continue;
-        std::vector<int> paths;
-        for (int l = 0; l < h.n_paths; ++l) paths.push_back(l);
-        EXPECT_LT(MaxPoseDifference(pb, h, paths), 1e-9) << seed << " other vehicle";
-        ++checked;
-      }
+      checked += ExpectOthersFollowTheScalarStep(pb, "seed " + std::to_string(seed));
     }
   }
   EXPECT_GE(checked, 12);
@@ -175,13 +183,7 @@ TEST(SiblingSteps, BodiesOnTheirPathFollowTheScalarStepWithinRounding) {
     for (int count : {1, 7, 11}) {
       EXPECT_LT(MaxPoseDifference(pb, pb.ego, SpreadPaths(pb.ego, count)), 1e-9) << seed;
     }
-    for (const core::HypothesisSet& h : pb.cos) {
-      if (!internal::SiblingStepsApply(h, pb.sim)) continue;
-      std::vector<int> paths;
-      for (int l = 0; l < h.n_paths; ++l) paths.push_back(l);
-      EXPECT_LT(MaxPoseDifference(pb, h, paths), 1e-9) << seed << " other vehicle";
-      ++checked;
-    }
+    checked += ExpectOthersFollowTheScalarStep(pb, "seed " + std::to_string(seed));
     std::vector<double> a(pb.sim.n_steps), b = a, c = a, d = a, e = a, f = a;
     core::SimulateHypothesis(pb.ego, pb.sim, 0, 0, a.data(), b.data(), c.data());
     core::SimulateHypothesis(off.ego, off.sim, 0, 0, d.data(), e.data(), f.data());
