@@ -141,10 +141,18 @@ complete=$(ls -d out/runs/*[0-9] | wc -l)
 check [ "$merged" = "$complete" ]  # never the .partial ones
 check [ "$(sqlite3 out/campaign.sqlite "select count(*) from steps where run_index not in (select run_index from campaign_runs)")" = 0 ]
 
-# Ctrl-C (SIGINT) half way: exit 130, running runs left to redo
+# Ctrl-C (SIGINT) half way: exit 130, running runs left to redo. The signal goes once the
+# campaign has started a run (the stand-in logs each start): a background job of this shell
+# starts with SIGINT ignored until the tool sets its handler, and a fixed wait lost that race
+# on a loaded machine (the campaign then ran to its end).
+started=$(wc -l <"$log")
 "$tool" run c.yaml -j 2 >run.out 2>run.err &
 pid=$!
-sleep 0.6
+for _ in $(seq 400); do
+  [ "$(wc -l <"$log")" -gt "$started" ] && break
+  sleep 0.05
+done
+sleep 0.1
 kill -INT $pid; wait $pid; rc=$?
 check [ $rc = 130 ]
 check [ "$(json_field interrupted "$(tail -n 1 run.out)")" -ge 1 ]
