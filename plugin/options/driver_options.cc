@@ -186,7 +186,9 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.internal_junction_yield) o->scenes.internal_junction_yield = true;
   if (raw.no_heading_hold) o->scenes.heading_hold = false;
   if (raw.no_way_heading) o->scenes.way_heading = false;
-  if (raw.junction_shapes) o->scenes.junction_shapes = true;
+  if (raw.junction_shapes && raw.no_junction_shapes)
+    Bad("--junction-shapes and --no-junction-shapes: choose one (the first is the default)");
+  if (raw.no_junction_shapes) o->scenes.junction_shapes = false;
   if (raw.bent_bodies) o->scenes.bent_bodies = true;
   if (raw.bodies_on_path) o->scenes.bodies_on_path = true;
   o->params = p;

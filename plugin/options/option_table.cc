@@ -155,11 +155,13 @@ void OptionTable::Estimator(DriverOptions* o) {
       "ablation (ours): take SUMO's angle also just after a lane change past a junction, where "
       "it points from the body's back, still on the old lane, to its front in the new one (by "
       "default the heading of the way behind the new lane: plugin/README.md, \"Headings\")")(
+      "no-junction-shapes", po::bool_switch(&raw.no_junction_shapes),
+      "ablation (ours): draw the lanes ahead through a junction as the straight chord from the "
+      "lane's end to the next lane's start (by default along the junction's internal lanes, "
+      "the turn SUMO drives: plugin/README.md)")(
       "junction-shapes", po::bool_switch(&raw.junction_shapes),
-      "experimental (ours, off by default: it did not help the held-out networks as a whole, "
-      "bench/RESULTS.md): draw the lanes ahead through a junction along its internal lanes "
-      "(the turn SUMO drives), not as the straight chord from the lane's end to the next "
-      "lane's start")(
+      "the default since 2026-12-05 (lanes through a junction along its internal lanes); "
+      "accepted so that older campaign files still run")(
       "bodies-on-path", po::bool_switch(&raw.bodies_on_path),
       "experimental (ours, off by default: it did not help the held-out networks as a whole, "
       "bench/RESULTS.md): every vehicle of one box (no carriages) is SUMO's box of it (front to "

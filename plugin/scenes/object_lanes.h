@@ -37,8 +37,8 @@ struct VehicleOnLane {
   bool observable_only{false};
   Blinker blinker{Blinker::kNone};
   /** Its way through a junction follows the junction's internal lanes (SceneConfig::
-   *  junction_shapes); false: the chord from the lane's end to the next lane's start. */
-  bool junction_shapes{false};
+   *  junction_shapes, the default); false: the chord from the lane's end to the next lane's start. */
+  bool junction_shapes{true};
 };
 
 /** The lane the vehicle drives onto after `lane`: along its route (NextLaneOnRoute, advancing

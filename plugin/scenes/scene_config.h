@@ -83,12 +83,12 @@ struct SceneConfig {
    *  by that lane (ObjectReader::Vehicle); --no-way-heading takes SUMO's angle. Reads the lane
    *  geometry and the edges the vehicle came by, which sensors see. */
   bool way_heading{true};
-  /** Experimental (--junction-shapes, off by default: on the held-out nets it did not help as
-   *  a whole, bench/RESULTS.md): the lanes ahead of a vehicle run through a junction along its
-   *  internal lanes (the turn as SUMO drives it). Off: the straight chord from the lane's end
-   *  to the next lane's start (getLinks names only the lane after the junction). Lane
+  /** The lanes ahead of a vehicle run through a junction along its internal lanes (the turn
+   *  as SUMO drives it). Off (--no-junction-shapes): the straight chord from the lane's end
+   *  to the next lane's start (getLinks names only the lane after the junction). On by
+   *  default since it helped both held-out families (bench/RESULTS.md, 2026-12-05). Lane
    *  geometry, which a map holds. */
-  bool junction_shapes{false};
+  bool junction_shapes{true};
   /** SUMO moves a vehicle into the next lane within one step (no sublane model,
    *  lanechange.duration 0, SUMO's defaults); set by the driver from SUMO's options. */
   bool instant_lane_changes{true};

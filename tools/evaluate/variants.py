@@ -74,10 +74,10 @@ VARIANTS = [
             "ours taking SUMO's angle also just after a lane change past a junction "
             "(--no-way-heading)",
             {"act": "warn", "no-way-heading": "true"}),
-    Variant("junction-shapes",
-            "ours drawing the lanes ahead through a junction along its internal lanes, not as "
-            "the chord between the lanes (--junction-shapes)",
-            {"act": "warn", "junction-shapes": "true"}),
+    Variant("no-junction-shapes",
+            "ours drawing the lanes ahead through a junction as the chord between the lanes, "
+            "not along its internal lanes (--no-junction-shapes)",
+            {"act": "warn", "no-junction-shapes": "true"}),
     Variant("horizon-3", "ours predicting 3 s ahead (--horizon 3) instead of the paper's 2 s",
             {"act": "warn", "horizon": "3"}),
     Variant("paper-literal", "the first implementation's scoring (ParamsPreset paper-literal)",
