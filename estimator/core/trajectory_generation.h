@@ -94,6 +94,10 @@ struct SimulationState {
   /** HypothesisSet::pose_hold_steps: the pose (scene frame) the poses in between repeat, and
    *  (for the CPU's SIMD path, which stores them) its heading's cos and sin. */
   double held_x{0.0}, held_y{0.0}, held_yaw{0.0}, held_c{1.0}, held_s{0.0};
+  /** The centre (scene frame) where the last step left it, whether or not the pose stored for
+   *  that step is a held one: where a reach bound from this state must start (the CPU's
+   *  out-of-reach test of a tree node). */
+  double pose_x{0.0}, pose_y{0.0};
 };
 
 /** Where the poses of a vehicle that has left the scene go (HypothesisSet::leave_distance):
@@ -114,8 +118,8 @@ CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h,
   st.s.ay = h.v0 * h.yaw_rate0;
   st.steer = InitialSteer(h, cfg.controller);
   st.track_x = h.track_x0;
-  st.held_x = h.X_WL.x;
-  st.held_y = h.X_WL.y;
+  st.held_x = st.pose_x = h.X_WL.x;
+  st.held_y = st.pose_y = h.X_WL.y;
   st.held_yaw = h.X_WL.yaw;
   if (h.pose_hold_steps > 1) {
     st.held_c = std::cos(h.X_WL.yaw);
@@ -303,6 +307,8 @@ CRIT_HD void VehicleStep(const HypothesisSet& h, const SimulationConfig& cfg, in
   st->travelled += s.v * tau;
   // The course of this step (cy, sy, cb, sb from its start).
   StorePose(h, *ctx, *st, cy * cb - sy * sb, sy * cb + cy * sb, x, y, yaw);
+  st->pose_x = *x;
+  st->pose_y = *y;
   HoldPose(h.pose_hold_steps, n, &st->held_x, &st->held_y, &st->held_yaw, x, y, yaw);
 }
 

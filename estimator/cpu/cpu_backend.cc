@@ -115,6 +115,21 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
   phase_block_.push_back(static_cast<int>(block_begin_.size()));
   block_begin_.push_back(steps);
   const int blocks = static_cast<int>(block_begin_.size()) - 1;
+  // Held poses (HypothesisSet::pose_hold_steps, the same for the ego and every object): a
+  // pose differs from the one before it only at step 0 and where the world looks ((n + 1) %
+  // hold == 0, core::HoldPose). A block without such a step repeats poses an earlier block
+  // holds, already tested (or bounded apart) for every pair still in play.
+  int hold = ego.pose_hold_steps;
+  for (const core::HypothesisSet& h : pb.cos) hold = h.pose_hold_steps == hold ? hold : 0;
+  block_new_pose_.assign(blocks, 1);
+  if (hold > 1) {
+    for (int q = 0; q < blocks; ++q) {
+      bool fresh = block_begin_[q] == 0;
+      for (int n = block_begin_[q]; n < block_begin_[q + 1] && !fresh; ++n)
+        fresh = (n + 1) % hold == 0;
+      block_new_pose_[q] = fresh;
+    }
+  }
   ResizeBounds(ego_, &ego_bounds_);
   ResizeBounds(co_, &co_bounds_);
   ego_cos_.resize(ego_.yaw.size());
@@ -294,9 +309,10 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
           const auto [profile, g] = group[l];
           nodes_state[static_cast<size_t>(profile) * count + g] = span.state[l];
           const int first = profile * ego.n_paths + g * width;
-          const size_t last = ego_.Offset(first) + n1 - 1;
+          // Where the span left the vehicle: with held poses (HypothesisSet::pose_hold_steps)
+          // its last stored pose may be one it left steps ago, too far back to bound its reach.
           nodes_end[static_cast<size_t>(profile) * count + g] =
-              n1 > n0 ? Position{ego_.x[last], ego_.y[last]}
+              n1 > n0 ? Position{span.state[l].pose_x, span.state[l].pose_y}
                       : parents_end[static_cast<size_t>(profile) * (count / L) + g / L];
           FinishSpan(ego_, &ego_cos_, &ego_sin_, &ego_bounds_, first, n0, n1, phase_block_[k],
                      phase_block_[k + 1], lanes,
@@ -527,7 +543,7 @@ void CpuBackend::RecognizeCollisions(const internal::Problem& pb,
                                             &co_sin_[cj], co.half_length, co.half_width};
           const long readable = static_cast<long>(std::min(ego_.x.size() - ei, co_.x.size() - cj));
           for (int q = q0; q < q1 && hit == 0; ++q) {
-            if (!near[q - q0]) continue;
+            if (!near[q - q0] || !block_new_pose_[q]) continue;
             const Circle &e = ego_bounds_.c[eb + q], &o = co_bounds_.c[cb + q];
             const double bx = e.cx - o.cx, by = e.cy - o.cy, br = e.r + o.r + reach;
             if (bx * bx + by * by > br * br) continue;  // the whole block is apart

@@ -115,6 +115,9 @@ class CpuBackend final : public EstimatorBackend {
   int boundary_[core::kMaxSampleInstants + 1]{};
   std::vector<int> block_begin_;
   std::vector<int> phase_block_;
+  // Per block: 0 when every pose in it repeats one of an earlier block (held poses), so the
+  // box tests skip it; 1 otherwise.
+  std::vector<char> block_new_pose_;
   BlockBounds ego_bounds_, co_bounds_;
   // Swept bounds: node_bounds_ per (profile, tree node) (node index: the nodes of instant k
   // follow those of instant k-1, k's group g at node_offset_[k] + g); co_tail_ per (CO

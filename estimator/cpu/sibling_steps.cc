@@ -253,7 +253,9 @@ HWY_INLINE void StorePoses(SiblingSpan* span, int first, int count, int n, const
   const int hold = span->h->pose_hold_steps;
   if (hold > 1 && (n + 1) % hold != 0) {
     for (int l = 0; l < count; ++l) {
-      const core::SimulationState& st = span->state[first + l];
+      core::SimulationState& st = span->state[first + l];
+      st.pose_x = bx[l];  // where the step left it (core::VehicleStep)
+      st.pose_y = by[l];
       span->x[first + l][n] = st.held_x;
       span->y[first + l][n] = st.held_y;
       span->yaw[first + l][n] = st.held_yaw;
@@ -265,6 +267,8 @@ HWY_INLINE void StorePoses(SiblingSpan* span, int first, int count, int n, const
     return;
   }
   for (int l = 0; l < count; ++l) {
+    span->state[first + l].pose_x = bx[l];
+    span->state[first + l].pose_y = by[l];
     if (hold > 1) {
       core::SimulationState& st = span->state[first + l];
       st.held_x = bx[l];

@@ -266,6 +266,39 @@ TEST(BackendsAgree, BodiesOnTheirPath) {
   EXPECT_GE(changed, 1);  // the switch reaches the backends
 }
 
+// Poses held between the world's steps (Params::collisions_at_world_steps): the fast path skips
+// the box tests of blocks that only repeat poses tested before; the pair matrix must stay the
+// reference's, scalar and SIMD, whether the world's step is a multiple of the blocks or not.
+TEST(BackendsAgree, PosesHeldBetweenTheWorldsSteps) {
+  for (const double world_step : {1.0, 0.5, 0.3, 0.06}) {  // 50, 25, 15 and 3 steps of 20 ms
+    const std::string tag = " (world step " + std::to_string(world_step) + " s)";
+    int with_collisions = 0, changed = 0;
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+      Scene scene = testing::RandomScene(seed, 4, 2, seed % 2 == 0);
+      const double every_step = testing::PCollision(scene);
+      scene.euler_update_step_s = world_step;
+      const std::string what = "seed " + std::to_string(seed) + tag;
+      with_collisions += ExpectSameResult(scene, Params{}, what) > 0;
+      // The SIMD lanes (trig within a few ulp of libm): the same p to 1e-6.
+      EstimatorOptions ref_opt, simd_opt;
+      ref_opt.backend = Backend::kReference;
+      simd_opt.backend = Backend::kCpu;
+      simd_opt.simd = true;
+      EXPECT_NEAR(Estimator(Params{}, ref_opt).Estimate(scene).p_collision,
+                  Estimator(Params{}, simd_opt).Estimate(scene).p_collision, 1e-6)
+          << what << ", SIMD";
+      changed += testing::PCollision(scene) != every_step;
+    }
+    EXPECT_GE(with_collisions, 3) << tag;
+    EXPECT_GE(changed, 1) << tag;  // the world's step reaches the backends
+    for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) {
+      Scene scene = d.scene;
+      scene.euler_update_step_s = world_step;
+      ExpectSameResult(scene, Params{}, d.name + tag);
+    }
+  }
+}
+
 TEST(BackendsAgree, AllDiscriminationScenes) {
   for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) {
     ExpectSameResult(d.scene, Params{}, d.name);
