@@ -23,9 +23,9 @@ struct RawOptions {
   bool no_lateral_controller{false}, no_road_model{false}, no_car_following{false};
   bool no_progress{false}, no_shortcut{false}, no_crossing_obligations{false},
       no_crossing_stops{false}, no_yield_stops{false}, no_heading_hold{false},
-      no_way_heading{false}, junction_shapes{false}, no_junction_shapes{false}, bent_bodies{false}, bodies_on_path{false},
-      release_braking{false}, no_world_step_collisions{false}, ego_stops{false},
-      internal_junction_yield{false}, no_simd{false}, no_pipeline{false};
+      no_way_heading{false}, junction_shapes{false}, no_junction_shapes{false}, bent_bodies{false},
+      bodies_on_path{false}, release_braking{false}, no_world_step_collisions{false},
+      ego_stops{false}, internal_junction_yield{false}, no_simd{false}, no_pipeline{false};
 };
 
 /** Not copyable or movable: the table points into `raw` and the options it was built for. */

@@ -257,20 +257,22 @@ TEST(EulerUpdate, TheFastPathFindsTheReferencesCollisionsWithHeldPoses) {
   ASSERT_EQ(scene.vehicles.size(), 1u);
   for (const double world_step : {1.0, 0.5}) {
     scene.euler_update_step_s = world_step;
-    EstimatorOptions ref_opt, cpu_opt;
+    EstimatorOptions ref_opt, scalar_opt, simd_opt;
     ref_opt.backend = Backend::kReference;
-    cpu_opt.backend = Backend::kCpu;
-    ref_opt.keep_pair_matrix = cpu_opt.keep_pair_matrix = true;
-    for (const bool simd : {false, true}) {
-      cpu_opt.simd = simd;
-      const Result a = Estimator{Params{}, ref_opt}.Estimate(scene);
-      const Result b = Estimator{Params{}, cpu_opt}.Estimate(scene);
-      EXPECT_GT(a.p_collision, 0.01) << world_step;  // the scene collides at SUMO's steps
-      // The SIMD lanes' trig is within a few ulp of libm's: the same answer to 1e-6 (the
-      // scalar path: bit for bit).
-      if (!simd) EXPECT_EQ(a.first_collision_step, b.first_collision_step) << world_step;
-      EXPECT_NEAR(a.p_collision, b.p_collision, simd ? 1e-6 : 0.0) << world_step << " " << simd;
-    }
+    scalar_opt.backend = simd_opt.backend = Backend::kCpu;
+    ref_opt.keep_pair_matrix = scalar_opt.keep_pair_matrix = true;
+    scalar_opt.simd = false;
+    simd_opt.simd = true;
+    const Result reference = Estimator{Params{}, ref_opt}.Estimate(scene);
+    const Result scalar = Estimator{Params{}, scalar_opt}.Estimate(scene);
+    EXPECT_GT(reference.p_collision, 0.01) << world_step;  // it collides at SUMO's steps
+    // The scalar fast path: bit for bit.
+    EXPECT_EQ(reference.first_collision_step, scalar.first_collision_step) << world_step;
+    EXPECT_EQ(reference.p_collision, scalar.p_collision) << world_step;
+    // The SIMD lanes (trig within a few ulp of libm's): the same p to 1e-6.
+    EXPECT_NEAR(reference.p_collision, Estimator(Params{}, simd_opt).Estimate(scene).p_collision,
+                1e-6)
+        << world_step;
   }
 }
 
