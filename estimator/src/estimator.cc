@@ -1,6 +1,7 @@
 #include "criticality/estimator.h"
 
 #include <chrono>
+#include <cmath>
 #include <exception>
 
 #include "cpu/cpu_backend.h"
@@ -10,6 +11,7 @@
 #include "src/backend.h"
 #include "src/parallel_for.h"
 #include "src/problem.h"
+#include "src/street_data.h"
 #include "src/reach_filter.h"
 #include "src/risk_assessment.h"
 #include "src/street_data.h"
@@ -123,6 +125,30 @@ std::string LaneProblem(const Lane& lane, double frame_rad) {
     return e.what();
   }
   return "";
+}
+
+double LaneCentreDeviation(const Lane& lane, double frame_rad, const std::vector<Point2>& centre) {
+  const internal::FittedLanes f =
+      internal::FitLanes(LaneSet{lane, std::nullopt, std::nullopt}, "lane", frame_rad, false, true);
+  const core::Parabola mid = f.own->Centre();
+  double x_min = HUGE_VAL, x_max = -HUGE_VAL;
+  for (const LaneDivider* d : {&lane.left, &lane.right}) {
+    for (const Point2& p : d->points) {
+      double xr = 0.0, yr = 0.0;
+      mid.ToFrame(p.x, p.y, &xr, &yr);
+      x_min = std::fmin(x_min, xr);
+      x_max = std::fmax(x_max, xr);
+    }
+  }
+  double worst = 0.0;
+  for (const Point2& p : centre) {
+    double xr = 0.0, yr = 0.0;
+    mid.ToFrame(p.x, p.y, &xr, &yr);
+    if (xr < x_min || xr > x_max) continue;
+    const double slope = mid.Slope(xr);  // the gap along y, taken across the curve
+    worst = std::fmax(worst, std::fabs(mid.Eval(xr) - yr) / std::sqrt(1.0 + slope * slope));
+  }
+  return worst;
 }
 
 bool CudaUsable(std::string* why) {

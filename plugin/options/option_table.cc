@@ -191,6 +191,10 @@ void OptionTable::Estimator(DriverOptions* o) {
       "steps, where SUMO looks for collisions (by default, with SUMO's Euler position update, "
       "the estimator reads SUMO's step length for this; estimator "
       "Params::collisions_at_world_steps)")(
+      "no-lane-fit-check", po::bool_switch(&raw.no_lane_fit_check),
+      "ablation (ours): use a lane's three samples over the full reach even where the parabola "
+      "through them leaves the lane between them (by default such a lane is sampled over a "
+      "shorter reach; estimator Params::lane_fit_within_lane)")(
       "no-car-following", po::bool_switch(&raw.no_car_following),
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(

@@ -11,6 +11,7 @@ LaneSampling LaneSamplingFor(const Params& params) {
   s.turn_lane_frame = params.turn_lane_frame && params.road_model;
   s.turn_lane_frame_min_rad = params.turn_lane_frame_min_rad;
   s.straight_before_turn = params.straight_before_turn && params.road_model;
+  s.centre_within_lane = params.lane_fit_within_lane && params.road_model;
   return s;
 }
 
@@ -60,9 +61,11 @@ double StraightBeforeTurn(const LaneCorridor& c, double reach_m) {
 namespace {
 
 // The lanes sampled over exactly `reach_m` (see SampleLaneSet); nullopt when the own lane's
-// samples cannot be fitted in the frame the estimator will fit them in.
+// samples cannot be fitted in the frame the estimator will fit them in. *within_lane: false
+// when LaneSampling::centre_within_lane finds the own lane's fitted centre out of the lane.
 std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
-                                  const LaneSampling& sampling) {
+                                  const LaneSampling& sampling, bool* within_lane) {
+  *within_lane = true;
   const double straight = sampling.straight_before_turn ? StraightBeforeTurn(c, reach_m) : 0.0;
   const double middle = straight > 0.0 ? straight : 0.5 * reach_m;
   const double s[3] = {c.position_m, c.position_m + middle, c.position_m + reach_m};
@@ -113,6 +116,20 @@ std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const P
     return LaneProblem(*lane, frame).empty();
   };
   if (!usable(set.own)) return std::nullopt;
+  // The parabola through three samples can leave the lane between them (a short straight and
+  // a sharp turn: it swings out to the other side first); then the lane is fitted over a
+  // shorter reach, which follows the road where the vehicle is.
+  if (sampling.centre_within_lane) {
+    std::vector<Point2> centre;
+    for (double d = 0.0; d <= reach_m; d += 1.0) {
+      double heading = 0.0;
+      const Point2 p = PointAlong(c.centre, c.position_m + d, &heading);
+      Point2 local;
+      WorldToLocal(X_WV, p.x, p.y, &local.x, &local.y);
+      centre.push_back(local);
+    }
+    *within_lane = LaneCentreDeviation(*set.own, frame, centre) <= 0.5 * c.width_m;
+  }
   if (set.left && !usable(set.left)) set.left.reset();
   if (set.right && !usable(set.right)) set.right.reset();
   return set;
@@ -128,14 +145,26 @@ LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
   // as the paper's frame can follow the turn, then shorter: a lane that follows the road part
   // of the way is better than none (without lanes a vehicle is predicted straight on, through
   // the junction it is turning in).
+  // The same where the fitted centre leaves the lane (LaneSampling::centre_within_lane); if no
+  // reach keeps it within, the first that can be fitted.
+  std::optional<LaneSet> fallback;
+  auto sample = [&](double reach) -> std::optional<LaneSet> {
+    bool within_lane = true;
+    std::optional<LaneSet> set = SampleOver(c, reach, X_WV, sampling, &within_lane);
+    if (set && !within_lane) {
+      if (!fallback) fallback = set;
+      return std::nullopt;
+    }
+    return set;
+  };
   const double first = SampledReach(c, reach_m, X_WV.yaw, sampling.turn_lane_frame);
-  if (const auto set = SampleOver(c, first, X_WV, sampling)) return *set;
+  if (const auto set = sample(first)) return *set;
   double reach = SampledReach(c, reach_m, X_WV.yaw, false);
   if (reach >= first) reach = 0.5 * first;
   for (; reach >= kMinSampledReachM; reach *= 0.5) {
-    if (const auto set = SampleOver(c, reach, X_WV, sampling)) return *set;
+    if (const auto set = sample(reach)) return *set;
   }
-  return LaneSet{};
+  return fallback ? *fallback : LaneSet{};
 }
 
 }  // namespace criticality::plugin

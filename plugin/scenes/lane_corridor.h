@@ -47,6 +47,10 @@ struct LaneSampling {
    *  turns by at least kStraightThenTurnMinRad within the reach, the middle samples go where
    *  the straight ends and every lane is marked Lane::straight_to_middle. */
   bool straight_before_turn{true};
+  /** Params::lane_fit_within_lane: a set whose own lane's fitted centre line lies farther than
+   *  half the lane's width from the corridor's centre line (LaneCentreDeviation, checked every
+   *  metre of the sampled reach) is not used at that reach (SampleLaneSet tries shorter). */
+  bool centre_within_lane{true};
 };
 constexpr double kStraightToleranceRad = 0.05235987755982989;   // 3 degrees
 constexpr double kStraightThenTurnMinRad = 0.2617993877991494;  // 15 degrees

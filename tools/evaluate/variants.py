@@ -74,6 +74,10 @@ VARIANTS = [
             "ours taking SUMO's angle also just after a lane change past a junction "
             "(--no-way-heading)",
             {"act": "warn", "no-way-heading": "true"}),
+    Variant("no-lane-fit-check",
+            "ours using a lane's samples over the full reach even where their parabola leaves "
+            "the lane (--no-lane-fit-check)",
+            {"act": "warn", "no-lane-fit-check": "true"}),
     Variant("no-junction-shapes",
             "ours drawing the lanes ahead through a junction as the chord between the lanes, "
             "not along its internal lanes (--no-junction-shapes)",

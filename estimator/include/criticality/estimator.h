@@ -33,6 +33,15 @@ bool CudaUsable(std::string* why);
  *  builds lanes from a map (the SUMO driver) leave out a lane instead of failing the estimate. */
 std::string LaneProblem(const Lane& lane, double frame_rad = 0.0);
 
+/** How far the centre line the estimator fits to `lane` (in the frame turned by frame_rad, as
+ *  LaneProblem) lies from `centre`, points of the lane's true centre line in the observer's
+ *  frame: the largest gap along the fitted frame's y axis, taken across the curve (times the
+ *  cosine of its slope there), over the points whose x in that frame lies within the lane's
+ *  samples. Lets a caller that samples lanes from a map see
+ *  a parabola that leaves the lane between its samples. `lane` must be usable (LaneProblem
+ *  empty). */
+double LaneCentreDeviation(const Lane& lane, double frame_rad, const std::vector<Point2>& centre);
+
 /** The frame the estimator fits an observer's `lanes` in, as an angle from its heading: 0, or
  *  the direction of its own lane's chord when that lane turns across its heading
  *  (Params::turn_lane_frame). */

@@ -226,6 +226,13 @@ struct Params {
    *  parabola tangent to it through the third (estimator/ALGORITHM.md "Straight road before a
    *  turn"); with false the mark is ignored. Project choice; paper-literal: false. */
   bool straight_before_turn{true};
+  /** The SUMO driver's lane sampling: a lane whose fitted centre line leaves the lane between
+   *  its samples (lies farther than half the lane's width from its centre line, as a parabola
+   *  through three samples of a short straight and a sharp junction turn does: 3.4 m towards
+   *  the lane beside it, traced in bench/RESULTS.md) is sampled over a shorter reach, as one
+   *  that cannot be fitted at all (plugin/scenes/lane_corridor.h). Project choice;
+   *  paper-literal: false. */
+  bool lane_fit_within_lane{true};
   /** A vehicle (or the ego) whose ObjectState::route_end_m is set leaves the scene once it has
    *  travelled that far: its hypotheses' poses from then on collide with nothing. SUMO removes
    *  a vehicle at the end of its route at full speed, often just before a junction; carried

@@ -163,6 +163,7 @@ TEST(LaneCorridor, AStraightBeforeATurnIsSampledToWhereTheTurnStarts) {
   EXPECT_GT(centre.Eval(38.0), 5.0);
   LaneSampling paper;
   paper.straight_before_turn = false;
+  paper.centre_within_lane = false;
   const LaneSet halves = SampleLaneSet(c, 45.0, Pose2{0.0, 0.0, 0.0}, paper);
   ASSERT_TRUE(halves.own);
   EXPECT_FALSE(halves.own->straight_to_middle);
@@ -173,6 +174,56 @@ TEST(LaneCorridor, AStraightBeforeATurnIsSampledToWhereTheTurnStarts) {
   EXPECT_LT(lowest, -1.0);
   EXPECT_FALSE(LaneSamplingFor(ParamsPreset("paper-literal")).straight_before_turn);
   EXPECT_TRUE(LaneSamplingFor(Params{}).straight_before_turn);
+}
+
+// The traced case (a user-style netgenerate run, 0.2 s steps, bench/RESULTS.md): car16 at
+// 7.3 m/s, 14.5 m before the end of its lane -9_2, turning left through SUMO's internal lanes
+// :1_3_0 and :1_21_0 (which first veer 12 degrees right) onto 19_2, a truck waiting in the
+// lane to its right. Sampled over 36 m, the parabola through the three samples swings out of
+// the lane to the right; the car's reference followed it into the truck (p 0.96, no collision
+// followed). With LaneSampling::centre_within_lane the lane is sampled over a shorter reach.
+TEST(LaneCorridor, ALaneWhoseFitLeavesItIsSampledShorter) {
+  LaneCorridor c;
+  c.centre = {{861.18, 663.5},  {786.92, 552.74}, {785.75, 549.79}, {784.31, 546.13},
+              {785.93, 540.87}, {791.04, 536.55}, {798.9, 532.77},  {976.9, 460.42}};
+  const Pose2 X_WV{795.007, 564.802, -2.1614};  // the car's centre, on the lane's centre line
+  c.position_m = std::hypot(861.18 - X_WV.x, 663.5 - X_WV.y);
+  c.width_m = 3.2;
+  c.left = c.right = NeighbourLane{3.2, false};
+  constexpr double kReach = 36.0;
+  // The true centre line every metre of the reach, in the car's frame.
+  std::vector<Point2> centre;
+  for (double d = 0.0; d <= kReach; d += 1.0) {
+    double heading = 0.0;
+    const Point2 w = PointAlong(c.centre, c.position_m + d, &heading);
+    Point2 p;
+    WorldToLocal(X_WV, w.x, w.y, &p.x, &p.y);
+    centre.push_back(p);
+  }
+  const std::vector<Point2> approach(centre.begin(), centre.begin() + 15);  // the straight
+  auto deviation = [](const LaneSet& set, const std::vector<Point2>& line) {
+    return LaneCentreDeviation(*set.own, LaneFrameAngle(set, Params{}), line);
+  };
+  LaneSampling unchecked;
+  unchecked.centre_within_lane = false;
+  const LaneSet full = SampleLaneSet(c, kReach, X_WV, unchecked);
+  ASSERT_TRUE(full.own);
+  EXPECT_NEAR(full.own->left.points[1].x, 16.6, 0.1);  // the recorded scene's samples
+  EXPECT_NEAR(full.own->left.points[2].y, 12.4, 0.1);
+  EXPECT_GT(deviation(full, centre), 0.5 * c.width_m);
+  const LaneSet checked = SampleLaneSet(c, kReach, X_WV);
+  ASSERT_TRUE(checked.own);
+  EXPECT_LT(checked.own->left.points[2].y, full.own->left.points[2].y - 3.0);  // shorter
+  // Along the straight the car is on, the shorter fit strays less.
+  EXPECT_LT(deviation(checked, approach), deviation(full, approach) - 0.5);
+  // A lane that the fit follows keeps its reach: the straight road.
+  LaneCorridor straight;
+  straight.centre = {{0, 0}, {100, 0}};
+  const LaneSet road = SampleLaneSet(straight, 33.0, Pose2{});
+  ASSERT_TRUE(road.own);
+  EXPECT_NEAR(road.own->left.points[2].x, 33.0, 1e-9);
+  EXPECT_FALSE(LaneSamplingFor(ParamsPreset("paper-literal")).centre_within_lane);
+  EXPECT_TRUE(LaneSamplingFor(Params{}).centre_within_lane);
 }
 
 TEST(LaneCorridor, OnlyAStraightFollowedByATurnIsSampledToItsEnd) {
