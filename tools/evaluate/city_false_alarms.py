@@ -8,7 +8,12 @@ these is counted by what followed it (the first that applies, in that order), no
 alarm. SSM: the device on every vehicle; an episode is a run of consecutive steps in which the
 vehicle has TTC < 3 s with any foe (ssm_log.all_ego_episodes), judged the same way. The rule is
 the views warning_outcomes and critical_event_warnings of plugin/record/result_views.sql (the
-campaign report's too), queried through result_views.py."""
+campaign report's too), queried through result_views.py.
+
+An episode that nothing followed but whose window runs past the run's last time (last_time_s) is
+also counted apart as unjudged: what followed it was not recorded. false_alarms keeps counting
+it (so that earlier figures stay comparable); the judged rate leaves it out and divides by the
+vehicle-hours in which an episode could be judged (judged_vehicle_hours)."""
 
 from dataclasses import dataclass
 
@@ -17,6 +22,9 @@ import ssm_log
 import warning_episodes as we
 
 GRACE_S = result_views.DEFAULT_GRACE_S
+# Tolerance of the comparisons with the run's last time: the rounding of the recorded times
+# (as the view collision_warnings allows).
+TIME_EPS_S = 1e-6
 
 
 @dataclass
@@ -35,6 +43,11 @@ class CityRow:
     followed_by_hard_braking: int = 0
     false_alarms: int = 0
     per_vehicle_hour: float = None
+    # Of the false alarms, those whose window runs past the run's last time (unjudged()); the
+    # others per vehicle-hour in which an episode could be judged (judged_vehicle_hours())
+    unjudged: int = 0
+    judged_vehicle_hours: float = 0.0
+    judged_per_vehicle_hour: float = None
     # The egos' overlaps and hard braking (critical_events), and of those the ones a warning
     # of that ego preceded (an episode that started at or before it and ended at most GRACE_S
     # before it)
@@ -43,6 +56,8 @@ class CityRow:
     ssm_episodes: int = None
     ssm_false_alarms: int = None
     ssm_per_vehicle_hour: float = None
+    ssm_unjudged: int = None
+    ssm_judged_per_vehicle_hour: float = None
     ssm_warned_critical_events: int = None
     wall_s: float = None
 
@@ -89,18 +104,45 @@ def vehicle_hours(run):
     return sum(len(s["time_s"]) for s in run.steps.values()) * run.step_length_s / 3600.0
 
 
+def last_time_s(run):
+    """The run's last simulated time: the latest step time the run recorded for any ego (its
+    steps table, what the judge has of every run: the summary's sim_time_s where there are no
+    steps, else None). Where every vehicle is an ego this is the summary's sim_time_s as a rule
+    (every run of the violations-full family of 2026-12-05: 199 s and 59.9 s); a run whose
+    egos all left before the end stops earlier, as what could still happen to them does."""
+    return max((max(s["time_s"]) for s in run.steps.values() if s["time_s"]),
+               default=run.end_s)
+
+
+def judged_vehicle_hours(run):
+    """The vehicle-hours in which an episode could be judged: the ego steps at or before the
+    run's last time minus GRACE_S, each one step length (vehicle_hours() counts every step)."""
+    last = last_time_s(run)
+    if last is None:
+        return 0.0
+    until = last - GRACE_S + TIME_EPS_S
+    steps = sum(1 for s in run.steps.values() for t in s["time_s"] if t <= until)
+    return steps * run.step_length_s / 3600.0
+
+
 def judged(run, eps_by_ego):
-    """({outcome: number of episodes} (None: false alarms), critical events warned of): the
-    episodes {ego: [Episode]} judged by the views warning_outcomes (what followed each episode
-    from its start to GRACE_S after its end: "collision", "overlap", "hard-braking", else None)
-    and critical_event_warnings (an episode of the event's ego began at or before it and ended
-    at most GRACE_S before it). An episode still open (end_s None) counts as ending at its
-    start."""
+    """({outcome: number of episodes} (None: false alarms), critical events warned of, unjudged):
+    the episodes {ego: [Episode]} judged by the views warning_outcomes (what followed each
+    episode from its start to GRACE_S after its end: "collision", "overlap", "hard-braking",
+    else None) and critical_event_warnings (an episode of the event's ego began at or before it
+    and ended at most GRACE_S before it). An episode still open (end_s None) counts as ending at
+    its start. Unjudged: the false alarms whose window (window_end_s) ends after the run's last
+    time (last_time_s), so that what followed was not recorded; they stay in the count of None."""
+    last = last_time_s(run)
     con = result_views.open_run(run, eps_by_ego, GRACE_S)
     try:
         out = dict(con.execute("SELECT outcome, count(*) FROM warning_outcomes GROUP BY 1"))
         warned = con.execute("SELECT count(*) FROM critical_event_warnings WHERE warned")
-        return out, warned.fetchone()[0]
+        warned = warned.fetchone()[0]
+        unjudged = 0 if last is None else con.execute(
+            "SELECT count(*) FROM warning_outcomes WHERE outcome IS NULL AND window_end_s > ?",
+            (last + TIME_EPS_S,)).fetchone()[0]
+        return out, warned, unjudged
     finally:
         con.close()
 
@@ -111,8 +153,14 @@ def outcomes(run, eps_by_ego):
 
 
 def false_alarms(run, eps_by_ego):
-    """Episodes that nothing critical followed."""
+    """Episodes that nothing critical followed (the unjudged ones included)."""
     return outcomes(run, eps_by_ego).get(None, 0)
+
+
+def unjudged(run, eps_by_ego):
+    """Episodes that nothing critical followed and whose window runs past the run's last time
+    (judged())."""
+    return judged(run, eps_by_ego)[2]
 
 
 def judge_city(run, setting, ssm_conflicts):
@@ -132,20 +180,26 @@ def judge_city(run, setting, ssm_conflicts):
     for w in run.warnings:
         ours.setdefault(w.ego, []).append(we.Episode(w.start_s, w.end_s, w.peak_p))
     row.warnings = len(run.warnings)
-    got, row.warned_critical_events = judged(run, ours)
+    got, row.warned_critical_events, row.unjudged = judged(run, ours)
     row.followed_by_collision = got.get("collision", 0)
     row.followed_by_overlap = got.get("overlap", 0)
     row.followed_by_hard_braking = got.get("hard-braking", 0)
     row.false_alarms = got.get(None, 0)
     row.critical_events = len(run.critical_events)
+    row.judged_vehicle_hours = judged_vehicle_hours(run)
     if row.vehicle_hours > 0:
         row.per_vehicle_hour = row.false_alarms / row.vehicle_hours
         row.warnings_per_vehicle_hour = row.warnings / row.vehicle_hours
+    if row.judged_vehicle_hours > 0:
+        row.judged_per_vehicle_hour = (row.false_alarms - row.unjudged) / row.judged_vehicle_hours
     if ssm_conflicts is not None:
         ssm = ssm_log.all_ego_episodes(ssm_conflicts, run.step_length_s)
         row.ssm_episodes = sum(len(v) for v in ssm.values())
-        got, row.ssm_warned_critical_events = judged(run, ssm)
+        got, row.ssm_warned_critical_events, row.ssm_unjudged = judged(run, ssm)
         row.ssm_false_alarms = got.get(None, 0)
         if row.vehicle_hours > 0:
             row.ssm_per_vehicle_hour = row.ssm_false_alarms / row.vehicle_hours
+        if row.judged_vehicle_hours > 0:
+            row.ssm_judged_per_vehicle_hour = ((row.ssm_false_alarms - row.ssm_unjudged) /
+                                               row.judged_vehicle_hours)
     return row

@@ -2,7 +2,9 @@
 variant chosen runs every network of the profile with every vehicle an ego (`--all-vehicles
 --act warn`), through criticality-campaign; then, per network and per set (tuning, held-out):
 vehicle-hours of estimation, warnings and false alarms per vehicle-hour (the views of
-plugin/record/result_views.sql, as for the city-like run: city_false_alarms.py), SUMO's
+plugin/record/result_views.sql, as for the city-like run: city_false_alarms.py), the false
+alarms whose window runs past the run's end (unjudged) and the others per vehicle-hour in which
+an episode could be judged, SUMO's
 collisions and how many of them a warning anticipated (and by how long: the view
 collision_anticipation), re-warnings and the turns of p within an approach (flicker).
 
@@ -12,7 +14,8 @@ ego's previous episode: one approach warned, released and warned again, as in th
 --warn-release-after).
 
 Writes OUT/family.csv (one row per network and variant), OUT/family_sets.csv (one row per set
-and variant), OUT/family.md and OUT/family.html."""
+and variant), OUT/family_set_steps.csv (one per set, step length and variant: the targets are
+per step length), OUT/family.md and OUT/family.html."""
 
 import html
 import os
@@ -44,7 +47,9 @@ class FamilyRow:
     vehicle_hours: float = 0.0
     egos: int = 0
     warnings: int = 0
-    false_alarms: int = 0
+    false_alarms: int = 0  # the unjudged ones included
+    unjudged: int = 0  # false alarms whose window runs past the run's last time
+    judged_vehicle_hours: float = 0.0  # up to the run's last time minus the grace
     rewarnings: int = 0
     dp_sign_changes: int = 0  # summed over the episodes (episode_flicker)
     collisions: int = 0
@@ -58,6 +63,13 @@ class FamilyRow:
     @property
     def false_alarms_per_vehicle_hour(self):
         return self.false_alarms / self.vehicle_hours if self.vehicle_hours > 0 else None
+
+    @property
+    def judged_false_alarms_per_vehicle_hour(self):
+        """The false alarms less the unjudged ones per judged vehicle-hour."""
+        if self.judged_vehicle_hours <= 0:
+            return None
+        return (self.false_alarms - self.unjudged) / self.judged_vehicle_hours
 
     @property
     def rewarnings_per_vehicle_hour(self):
@@ -74,10 +86,12 @@ class FamilyRow:
     def as_dict(self):
         d = {k: getattr(self, k) for k in ("variant", "network", "split", "kind", "step_s",
                                            "status", "vehicle_hours", "egos", "warnings",
-                                           "false_alarms", "rewarnings", "collisions",
+                                           "false_alarms", "unjudged",
+                                           "judged_vehicle_hours", "rewarnings", "collisions",
                                            "warned_collisions")}
         d.update(warnings_per_vehicle_hour=self.warnings_per_vehicle_hour,
                  false_alarms_per_vehicle_hour=self.false_alarms_per_vehicle_hour,
+                 judged_false_alarms_per_vehicle_hour=self.judged_false_alarms_per_vehicle_hour,
                  rewarnings_per_vehicle_hour=self.rewarnings_per_vehicle_hour,
                  dp_sign_changes_per_warning=self.dp_sign_changes_per_warning,
                  median_anticipation_s=self.median_anticipation_s)
@@ -154,7 +168,10 @@ def judge(variant, net, run):
     eps = {}
     for w in run.warnings:
         eps.setdefault(w.ego, []).append(we.Episode(w.start_s, w.end_s, w.peak_p))
-    row.false_alarms = city_false_alarms.false_alarms(run, eps) if eps else 0
+    row.judged_vehicle_hours = city_false_alarms.judged_vehicle_hours(run)
+    if eps:
+        got, _, row.unjudged = city_false_alarms.judged(run, eps)
+        row.false_alarms = got.get(None, 0)
     row.rewarnings = rewarnings(run.warnings)
     row.dp_sign_changes = sum(episode_flicker(run))
     ant = collision_anticipation(run)
@@ -164,23 +181,28 @@ def judge(variant, net, run):
     return row
 
 
-def sets(rows):
-    """One row per (variant, split): the sums over its networks that ran, and the rates of the
-    sums (a set's rate weighs its networks by their vehicle-hours)."""
+def sets(rows, by_step=False):
+    """One row per (variant, split), or with by_step per (variant, split, step length): the sums
+    over its networks that ran, and the rates of the sums (a set's rate weighs its networks by
+    their vehicle-hours)."""
     out = []
     order = list(dict.fromkeys(r.variant for r in rows))  # as the variants were given
-    keys = sorted({(r.variant, r.split) for r in rows},
-                  key=lambda k: (order.index(k[0]), k[1] != "tuning"))
-    for variant, split in keys:
-        mine = [r for r in rows if r.variant == variant and r.split == split]
+    step = (lambda r: r.step_s) if by_step else (lambda r: None)
+    keys = sorted({(r.variant, r.split, step(r)) for r in rows},
+                  key=lambda k: (order.index(k[0]), k[1] != "tuning", -(k[2] or 0.0)))
+    for variant, split, step_s in keys:
+        mine = [r for r in rows if r.variant == variant and r.split == split and
+                step(r) == step_s]
         ok = [r for r in mine if r.status == "ok"]
         s = FamilyRow(variant=variant, network=f"{len(ok)} of {len(mine)} networks", split=split,
-                      status="ok" if len(ok) == len(mine) else "incomplete")
+                      step_s=step_s, status="ok" if len(ok) == len(mine) else "incomplete")
         for r in ok:
             s.vehicle_hours += r.vehicle_hours
             s.egos += r.egos
             s.warnings += r.warnings
             s.false_alarms += r.false_alarms
+            s.unjudged += r.unjudged
+            s.judged_vehicle_hours += r.judged_vehicle_hours
             s.rewarnings += r.rewarnings
             s.dp_sign_changes += r.dp_sign_changes
             s.collisions += r.collisions
@@ -192,11 +214,13 @@ def sets(rows):
 
 COLUMNS = ["variant", "split", "network", "step_s", "status", "vehicle_hours", "egos",
            "warnings", "warnings_per_vehicle_hour", "false_alarms",
-           "false_alarms_per_vehicle_hour", "rewarnings", "rewarnings_per_vehicle_hour",
+           "false_alarms_per_vehicle_hour", "unjudged", "judged_vehicle_hours",
+           "judged_false_alarms_per_vehicle_hour", "rewarnings", "rewarnings_per_vehicle_hour",
            "dp_sign_changes_per_warning", "collisions", "warned_collisions",
            "median_anticipation_s"]
 HEADERS = ["variant", "set", "network", "step (s)", "status", "vehicle-hours", "egos",
-           "warnings", "warnings / veh-h", "false alarms", "false alarms / veh-h", "re-warnings",
+           "warnings", "warnings / veh-h", "false alarms", "false alarms / veh-h", "unjudged",
+           "judged veh-h", "judged false alarms / veh-h", "re-warnings",
            "re-warnings / veh-h", "dp sign changes / warning", "collisions", "warned collisions",
            "median anticipation (s)"]
 SET_COLUMNS = [c for c in COLUMNS if c != "step_s"]
@@ -207,16 +231,27 @@ def write(out, rows, info_lines):
     """family.csv, family_sets.csv, family.md, family.html; returns the set rows."""
     per = [r.as_dict() for r in rows]
     summary = [r.as_dict() for r in sets(rows)]
+    by_step = [r.as_dict() for r in sets(rows, by_step=True)]
     tables.write_csv(os.path.join(out, "family.csv"), per, COLUMNS)
     tables.write_csv(os.path.join(out, "family_sets.csv"), summary, SET_COLUMNS)
+    tables.write_csv(os.path.join(out, "family_set_steps.csv"), by_step, COLUMNS)
     intro = ["# Held-out networks (tools/evaluate/network_family.py)", ""] + info_lines + [
         "", "Every vehicle an ego, `--act warn`. A false alarm: a warning episode that no "
-        "collision, body overlap or hard braking of its ego followed within 2 s of its end. "
+        "collision, body overlap or hard braking of its ego followed within "
+        f"{city_false_alarms.GRACE_S:g} s of its end. Unjudged: a false alarm whose window (from "
+        f"the episode's start to {city_false_alarms.GRACE_S:g} s after its end) runs past the "
+        "last time the run recorded for any ego: what would have followed was not recorded. "
+        "'false alarms' and 'false alarms / veh-h' count the unjudged ones, as before, so that "
+        "earlier figures stay comparable; 'judged false alarms / veh-h' leaves them out and "
+        "divides by the judged vehicle-hours, the ego steps at or before that last time minus "
+        f"{city_false_alarms.GRACE_S:g} s. An episode followed by a collision, overlap or hard "
+        "braking is judged by it even when its window runs past the end. "
         f"A re-warning: an episode opening within {REWARN_GAP_S:g} s of the end of its ego's "
         "previous one. dp sign changes / warning: how often p turned (by at least "
         f"{FLICKER_MIN_DP:g} a step) over an episode and the {APPROACH_S:g} s before it: 1 for a "
         "p that rises once and falls once. A rule is kept only if it helps the held-out set.", ""]
     md = intro + ["## By set", "", tables.markdown(summary, SET_COLUMNS, SET_HEADERS), "",
+                  "## By set and step length", "", tables.markdown(by_step, COLUMNS, HEADERS), "",
                   "## By network", "", tables.markdown(per, COLUMNS, HEADERS), ""]
     with open(os.path.join(out, "family.md"), "w", encoding="utf-8") as f:
         f.write("\n".join(md))
@@ -233,8 +268,10 @@ def write(out, rows, info_lines):
             "padding:3px 6px;text-align:right}th{background:#eee}</style></head><body>",
             "<h1>Held-out networks</h1>"] + [f"<p>{html.escape(x)}</p>" for x in intro[2:] if x]
     page += ["<h2>By set</h2>", table(summary, SET_COLUMNS, SET_HEADERS),
+             "<h2>By set and step length</h2>", table(by_step, COLUMNS, HEADERS),
              "<h2>By network</h2>", table(per, COLUMNS, HEADERS),
-             "<p>family.csv, family_sets.csv: the same tables.</p></body></html>"]
+             "<p>family.csv, family_sets.csv, family_set_steps.csv: the same tables.</p>"
+             "</body></html>"]
     with open(os.path.join(out, "family.html"), "w", encoding="utf-8") as f:
         f.write("\n".join(page))
     return summary

@@ -545,6 +545,82 @@ class FamilyEvalTest(unittest.TestCase):
             self.assertIn("| ours | tuning | 1 of 1 networks |", text)
             self.assertTrue(os.path.exists(os.path.join(d, "family.html")))
 
+    def test_an_episode_whose_window_runs_past_the_end_is_unjudged(self):
+        # A 0.1 s run whose last step is 59.9 s: ego a from 0 s (600 steps), b from 30 s (300),
+        # c from 0 s until it left at 19.9 s (200).
+        run = make_run("gv5_0.1s", "a", [0.0] * 600)
+        run.steps["b"] = {"time_s": times(300, 30.0), "p_collision": [0.0] * 300}
+        run.steps["c"] = {"time_s": times(200), "p_collision": [0.0] * 200}
+        w = run_data.Warning
+        run.warnings = [w("a", 53.0, 54.9, 0.9),  # ends 5 s before the end: a false alarm
+                        w("a", 55.5, 57.9, 0.9),  # its window ends at 59.9 s: still judged
+                        w("a", 58.0, 59.4, 0.9),  # ends 0.5 s before the end: unjudged
+                        w("b", 58.5, 59.5, 0.9)]  # its window runs past the end, but
+        run.collisions = [run_data.Collision(59.8, "b", "x", 5.0, 0.0, True)]  # this followed
+        self.assertAlmostEqual(city_false_alarms.last_time_s(run), 59.9)
+        # Every step counts 0.1 s: 1100 steps; judged: those at or before 59.9 - 2 = 57.9 s:
+        # a 0.0-57.9 (580), b 30.0-57.9 (280), c all 200: 1060 steps.
+        vh, judged_vh = 1100 * 0.1 / 3600, 1060 * 0.1 / 3600
+        self.assertAlmostEqual(city_false_alarms.judged_vehicle_hours(run), judged_vh)
+        row = family_eval.judge("ours", network_family.Network("gv", 5, 0.1), run)
+        # false_alarms keeps its meaning (the unjudged episode included); the collision after
+        # b's episode counts although its window runs past the end.
+        self.assertEqual((row.warnings, row.false_alarms, row.unjudged), (4, 3, 1))
+        self.assertEqual(row.collisions, 1)
+        self.assertAlmostEqual(row.vehicle_hours, vh)
+        self.assertAlmostEqual(row.false_alarms_per_vehicle_hour, 3 / vh)
+        self.assertAlmostEqual(row.judged_false_alarms_per_vehicle_hour, 2 / judged_vh)
+        eps = {}
+        for x in run.warnings:
+            eps.setdefault(x.ego, []).append(we.Episode(x.start_s, x.end_s, x.peak_p))
+        got, _, unjudged = city_false_alarms.judged(run, eps)
+        self.assertEqual((got.get(None), got.get("collision"), unjudged), (3, 1, 1))
+        (s,) = family_eval.sets([row])
+        self.assertEqual((s.false_alarms, s.unjudged), (3, 1))
+        self.assertAlmostEqual(s.judged_false_alarms_per_vehicle_hour, 2 / judged_vh)
+        city = city_false_alarms.judge_city(run, "test", None)
+        self.assertEqual((city.false_alarms, city.unjudged, city.followed_by_collision),
+                         (3, 1, 1))
+        self.assertAlmostEqual(city.per_vehicle_hour, 3 / vh)
+        self.assertAlmostEqual(city.judged_vehicle_hours, judged_vh)
+        self.assertAlmostEqual(city.judged_per_vehicle_hour, 2 / judged_vh)
+        with tempfile.TemporaryDirectory() as d:
+            family_eval.write(d, [row], ["- test"])
+            with open(os.path.join(d, "family.csv"), encoding="utf-8") as f:
+                header = f.readline()
+            self.assertIn(",false_alarms,false_alarms_per_vehicle_hour,unjudged,"
+                          "judged_vehicle_hours,judged_false_alarms_per_vehicle_hour,", header)
+            with open(os.path.join(d, "family_sets.csv"), encoding="utf-8") as f:
+                header = f.readline()
+            self.assertIn(",unjudged,judged_vehicle_hours,judged_false_alarms_per_vehicle_hour,",
+                          header)
+
+
+    def test_the_sets_are_also_given_per_step_length(self):
+        # The targets are per step length: one tuning network at 0.1 s steps with one false
+        # alarm, the same network at 1 s steps with two (the rows take their step from the
+        # network; both runs are STEP runs of 60 s).
+        w = run_data.Warning
+        fast = make_run("gv5_0.1s", "a", [0.0] * 600, warnings=[w("a", 10.0, 10.5, 0.9)])
+        slow = make_run("gv5_1s", "a", [0.0] * 600,
+                        warnings=[w("a", 10.0, 12.0, 0.9), w("a", 30.0, 31.0, 0.9)])
+        rows = [family_eval.judge("ours", network_family.Network("gv", 5, 0.1), fast),
+                family_eval.judge("ours", network_family.Network("gv", 5, 1.0), slow)]
+        (both,) = family_eval.sets(rows)
+        self.assertEqual((both.false_alarms, both.step_s), (3, None))
+        per = family_eval.sets(rows, by_step=True)
+        self.assertEqual([(s.split, s.step_s, s.false_alarms) for s in per],
+                         [("tuning", 1.0, 2), ("tuning", 0.1, 1)])
+        self.assertEqual([s.network for s in per], ["1 of 1 networks"] * 2)
+        self.assertAlmostEqual(per[1].false_alarms_per_vehicle_hour, 1 / (600 * STEP / 3600))
+        with tempfile.TemporaryDirectory() as d:
+            family_eval.write(d, rows, ["- test"])
+            with open(os.path.join(d, "family_set_steps.csv"), encoding="utf-8") as f:
+                lines = f.read().splitlines()
+            self.assertEqual(len(lines), 3)  # the header and the two step lengths
+            self.assertTrue(lines[1].startswith("ours,tuning,1 of 1 networks,1.000,ok,"))
+            with open(os.path.join(d, "family.md"), encoding="utf-8") as f:
+                self.assertIn("## By set and step length", f.read())
 
 if __name__ == "__main__":
     unittest.main()
