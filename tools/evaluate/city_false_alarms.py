@@ -105,13 +105,12 @@ def vehicle_hours(run):
 
 
 def last_time_s(run):
-    """The run's last simulated time: the latest step time the run recorded for any ego (its
-    steps table, what the judge has of every run: the summary's sim_time_s where there are no
-    steps, else None). Where every vehicle is an ego this is the summary's sim_time_s as a rule
-    (every run of the violations-full family of 2026-12-05: 199 s and 59.9 s); a run whose
-    egos all left before the end stops earlier, as what could still happen to them does."""
-    return max((max(s["time_s"]) for s in run.steps.values() if s["time_s"]),
-               default=run.end_s)
+    """The run's last simulated time: the summary's sim_time_s (the driver records collisions
+    and critical events until then, also after the egos it names have left), else the latest
+    step time the run recorded for any ego; None when it has neither."""
+    if run.end_s is not None:
+        return run.end_s
+    return max((max(s["time_s"]) for s in run.steps.values() if s["time_s"]), default=None)
 
 
 def judged_vehicle_hours(run):
@@ -155,12 +154,6 @@ def outcomes(run, eps_by_ego):
 def false_alarms(run, eps_by_ego):
     """Episodes that nothing critical followed (the unjudged ones included)."""
     return outcomes(run, eps_by_ego).get(None, 0)
-
-
-def unjudged(run, eps_by_ego):
-    """Episodes that nothing critical followed and whose window runs past the run's last time
-    (judged())."""
-    return judged(run, eps_by_ego)[2]
 
 
 def judge_city(run, setting, ssm_conflicts):

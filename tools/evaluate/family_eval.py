@@ -240,7 +240,7 @@ def write(out, rows, info_lines):
         "collision, body overlap or hard braking of its ego followed within "
         f"{city_false_alarms.GRACE_S:g} s of its end. Unjudged: a false alarm whose window (from "
         f"the episode's start to {city_false_alarms.GRACE_S:g} s after its end) runs past the "
-        "last time the run recorded for any ego: what would have followed was not recorded. "
+        "last simulated time of the run: what would have followed was not recorded. "
         "'false alarms' and 'false alarms / veh-h' count the unjudged ones, as before, so that "
         "earlier figures stay comparable; 'judged false alarms / veh-h' leaves them out and "
         "divides by the judged vehicle-hours, the ego steps at or before that last time minus "

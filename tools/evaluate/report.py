@@ -270,8 +270,8 @@ encounter); SSM's anticipation comes from its conflict with the collision partne
 pedestrians. City: every vehicle an ego; vehicle-hours = estimated ego steps x step length; a
 false alarm is a warning episode of an ego that did not collide, overlap another's body or brake
 harder than its vehicle type's decel (the driver's critical_events) between the episode's start
-and 2 s after its end; unjudged: those false alarms whose window runs past the last time the
-run recorded for any ego (nothing after it was recorded); per_vehicle_hour counts them,
+and 2 s after its end; unjudged: those false alarms whose window runs past the run's last
+simulated time (nothing after it was recorded); per_vehicle_hour counts them,
 judged_per_vehicle_hour leaves them out and divides by judged_vehicle_hours (the ego steps at or
 before that last time minus 2 s); SSM's episodes are runs of steps with TTC < 3 s with any foe.
 Closed loop: the same scenario with --act brake; impact speed is the collider's speed in the

@@ -595,6 +595,16 @@ class FamilyEvalTest(unittest.TestCase):
             self.assertIn(",unjudged,judged_vehicle_hours,judged_false_alarms_per_vehicle_hour,",
                           header)
 
+    def test_an_ego_that_left_before_the_run_ended_is_judged(self):
+        # SUMO ran on to 70 s after the only ego's last step (59.9 s): the driver recorded
+        # collisions until then, so its episode ending at 59.4 s is a false alarm, not unjudged.
+        run = make_run("gv5_0.1s", "a", [0.0] * 600, end_s=70.0,
+                       warnings=[run_data.Warning("a", 58.0, 59.4, 0.9)])
+        self.assertAlmostEqual(city_false_alarms.last_time_s(run), 70.0)
+        row = family_eval.judge("ours", network_family.Network("gv", 5, 0.1), run)
+        self.assertEqual((row.false_alarms, row.unjudged), (1, 0))
+        self.assertAlmostEqual(row.judged_vehicle_hours, row.vehicle_hours)
+
 
     def test_the_sets_are_also_given_per_step_length(self):
         # The targets are per step length: one tuning network at 0.1 s steps with one false
