@@ -174,4 +174,31 @@ CRIT_HD bool FitStraightThenParabola(const double x[3], const double y[3], doubl
   return true;
 }
 
+/** A lane turning at a corner (Lane::corner_tangent_m): the straight through (x[0], y[0]) and
+ *  the corner (x[1], y[1]) up to x_start, the parabola tangent to it there and, at x_end, to
+ *  the straight from the corner through (x[2], y[2]), that straight beyond x_end. The two
+ *  tangents of a parabola meet halfway between their points of contact, so with x_start and
+ *  x_end centred on x[1] the second straight is exact; shared by both dividers of a lane
+ *  (centred on their mean corner) it is parallel to it. @returns false (leaving *out untouched)
+ *  unless x[0] < x[1] < x[2] and x_start < x_end. */
+CRIT_HD bool FitCorner(const double x[3], const double y[3], double x_start, double x_end,
+                       Parabola* out) {
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) return false;
+  }
+  if (!(x[0] < x[1] && x[1] < x[2]) || !std::isfinite(x_start) || !std::isfinite(x_end) ||
+      !(x_end - x_start > kLaneFitPivotTolerance * (x[2] - x[0])))
+    return false;
+  const double m1 = (y[1] - y[0]) / (x[1] - x[0]);
+  const double m2 = (y[2] - y[1]) / (x[2] - x[1]);
+  const double a = (m2 - m1) / (2.0 * (x_end - x_start));
+  const double b = m1 - 2.0 * a * x_start;
+  out->a = a;
+  out->b = b;
+  out->c = y[0] + m1 * (x_start - x[0]) - (a * x_start + b) * x_start;
+  out->x_start = x_start;
+  out->x_end = x_end;
+  return true;
+}
+
 }  // namespace criticality::core

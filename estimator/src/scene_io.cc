@@ -1,5 +1,6 @@
 #include "criticality/scene_io.h"
 
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -36,6 +37,7 @@ void WriteLanes(std::ostream& out, const LaneSet& lanes) {
       for (const Point2& p : d->points) out << ' ' << p.x << ' ' << p.y;
     }
     if (lane->straight_to_middle) out << " straight-to-middle";
+    if (lane->corner_tangent_m > 0.0) out << " corner " << lane->corner_tangent_m;
     out << '\n';
   };
   one("own", lanes.own);
@@ -337,11 +339,18 @@ Scene ReadScene(std::istream& in, const std::string& source) {
           p.y = r.Num();
         }
       }
-      if (r.next < r.words.size()) {
+      while (r.next < r.words.size()) {
         const std::string shape = r.Word();
-        if (shape != "straight-to-middle")
-          throw InputError(r.where + ": lane shape '" + shape + "' must be straight-to-middle");
-        lane.straight_to_middle = true;
+        if (shape == "straight-to-middle") {
+          lane.straight_to_middle = true;
+        } else if (shape == "corner") {
+          lane.corner_tangent_m = r.Num();
+          if (!(lane.corner_tangent_m > 0.0) || !std::isfinite(lane.corner_tangent_m))
+            throw InputError(r.where + ": corner tangent length must be a positive number of m");
+        } else {
+          throw InputError(r.where + ": lane shape '" + shape +
+                           "' must be straight-to-middle or corner T");
+        }
       }
       if (which == "own")
         lanes->own = lane;

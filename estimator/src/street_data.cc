@@ -17,10 +17,29 @@ double MiddleX(const LaneDivider& d, double frame_rad) {
   return std::cos(frame_rad) * d.points[1].x + std::sin(frame_rad) * d.points[1].y;
 }
 
+// Where a corner lane's (Lane::corner_tangent_m) turn begins and ends along x in the frame
+// turned by frame_rad: tangent_m before the divider's corner along its first straight and after
+// it along its second.
+void CornerSpan(const LaneDivider& d, double frame_rad, double tangent_m, double* x_start,
+                double* x_end) {
+  const double c = std::cos(frame_rad), s = std::sin(frame_rad);
+  double x[3], y[3];
+  for (int i = 0; i < 3; ++i) {
+    x[i] = c * d.points[i].x + s * d.points[i].y;
+    y[i] = -s * d.points[i].x + c * d.points[i].y;
+  }
+  const double l1 = std::hypot(x[1] - x[0], y[1] - y[0]);
+  const double l2 = std::hypot(x[2] - x[1], y[2] - y[1]);
+  *x_start = x[1] - (l1 > 0.0 ? tangent_m * (x[1] - x[0]) / l1 : 0.0);
+  *x_end = x[1] + (l2 > 0.0 ? tangent_m * (x[2] - x[1]) / l2 : 0.0);
+}
+
 // straight_until: NaN for the paper's parabola, else the x (fit frame) where the straight road
-// before a turn ends (FitStraightThenParabola).
+// before a turn ends (FitStraightThenParabola). corner_start < corner_end: a corner lane's turn
+// (FitCorner); NaN otherwise.
 core::Parabola FitDivider(const LaneDivider& d, const std::string& where, double frame_rad,
-                          bool straight_beyond, double straight_until) {
+                          bool straight_beyond, double straight_until,
+                          double corner_start = std::nan(""), double corner_end = std::nan("")) {
   double x[3], y[3];
   const double c = std::cos(frame_rad), s = std::sin(frame_rad);
   for (int i = 0; i < 3; ++i) {
@@ -51,6 +70,17 @@ core::Parabola FitDivider(const LaneDivider& d, const std::string& where, double
     }
   }
   core::Parabola p;
+  if (!std::isnan(corner_start)) {
+    if (!core::FitCorner(x, y, corner_start, corner_end, &p)) {
+      std::ostringstream msg;
+      msg << where << ": a corner needs increasing forward distances and a turn of positive "
+          << "length, got x = " << x[0] << ", " << x[1] << ", " << x[2] << " m, turn from "
+          << corner_start << " to " << corner_end << " m";
+      throw InputError(msg.str());
+    }
+    if (frame_rad != 0.0) p.SetFrame(frame_rad);
+    return p;  // straight beyond its turn already
+  }
   if (!std::isnan(straight_until)) {
     if (!core::FitStraightThenParabola(x, y, straight_until, &p)) {
       std::ostringstream msg;
@@ -76,8 +106,19 @@ std::optional<FittedLane> FitLane(const std::optional<Lane>& lane, const std::st
       straight_to_middle && lane->straight_to_middle
           ? 0.5 * (MiddleX(lane->left, frame_rad) + MiddleX(lane->right, frame_rad))
           : std::nan("");
-  f.left = FitDivider(lane->left, where + ".left", frame_rad, straight_beyond, straight_until);
-  f.right = FitDivider(lane->right, where + ".right", frame_rad, straight_beyond, straight_until);
+  // A corner lane's dividers turn over the same span of x (the means of theirs).
+  double corner_start = std::nan(""), corner_end = std::nan("");
+  if (lane->corner_tangent_m > 0.0) {
+    double s_left, e_left, s_right, e_right;
+    CornerSpan(lane->left, frame_rad, lane->corner_tangent_m, &s_left, &e_left);
+    CornerSpan(lane->right, frame_rad, lane->corner_tangent_m, &s_right, &e_right);
+    corner_start = 0.5 * (s_left + s_right);
+    corner_end = 0.5 * (e_left + e_right);
+  }
+  f.left = FitDivider(lane->left, where + ".left", frame_rad, straight_beyond, straight_until,
+                      corner_start, corner_end);
+  f.right = FitDivider(lane->right, where + ".right", frame_rad, straight_beyond, straight_until,
+                       corner_start, corner_end);
   f.counter_traffic = lane->counter_traffic;
   // Both dividers continue straight from the same distance along the turn frame.
   f.left.x_end = f.right.x_end = 0.5 * (f.left.x_end + f.right.x_end);
@@ -117,6 +158,7 @@ std::optional<Lane> LaneInFrame(const Lane& lane, const core::Pose2& X_EV, bool 
   out.right = ToFrame(reversed ? lane.left : lane.right, X_EV);
   out.counter_traffic = counter;
   out.straight_to_middle = lane.straight_to_middle;
+  out.corner_tangent_m = lane.corner_tangent_m;
   try {
     const FittedLanes probe =
         FitLanes(LaneSet{out, std::nullopt, std::nullopt}, "lane", 0.0, false, true);
@@ -161,7 +203,15 @@ double LaneFrameAngle(const LaneSet& lanes, const Params& params) {
   const double y0 = 0.5 * (own.left.points[0].y + own.right.points[0].y);
   const double x2 = 0.5 * (own.left.points[2].x + own.right.points[2].x);
   const double y2 = 0.5 * (own.left.points[2].y + own.right.points[2].y);
-  const double chord = std::atan2(y2 - y0, x2 - x0);
+  double chord = std::atan2(y2 - y0, x2 - x0);
+  if (own.corner_tangent_m > 0.0) {
+    // A corner: the frame across its bisector, in which both straights have slopes of the
+    // same size (a turn of 90 degrees: +-1), so that the parabola between them is symmetric.
+    const double x1 = 0.5 * (own.left.points[1].x + own.right.points[1].x);
+    const double y1 = 0.5 * (own.left.points[1].y + own.right.points[1].y);
+    const double in = std::atan2(y1 - y0, x1 - x0), out = std::atan2(y2 - y1, x2 - x1);
+    chord = in + 0.5 * std::remainder(out - in, 2.0 * core::kPi);
+  }
   if (!std::isfinite(chord) || std::fabs(chord) < params.turn_lane_frame_min_rad) return 0.0;
   // A chord further off than this does not belong to a lane the observer drives along (a lane
   // sampled against its direction of travel, or a U-turn): the paper's frame, which rejects it.

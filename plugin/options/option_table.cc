@@ -195,6 +195,10 @@ void OptionTable::Estimator(DriverOptions* o) {
       "ablation (ours): use a lane's three samples over the full reach even where the parabola "
       "through them leaves the lane between them (by default such a lane is sampled over a "
       "shorter reach; estimator Params::lane_fit_within_lane)")(
+      "lane-corners", po::bool_switch(&raw.lane_corners),
+      "experimental (ours, off by default): a lane that turns by 15 degrees or more over its "
+      "sampled reach is sent as a corner (straight, a parabola tangent to both straights, "
+      "straight) instead of three samples on it (estimator Params::lane_corners)")(
       "no-car-following", po::bool_switch(&raw.no_car_following),
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(

@@ -12,6 +12,7 @@ LaneSampling LaneSamplingFor(const Params& params) {
   s.turn_lane_frame_min_rad = params.turn_lane_frame_min_rad;
   s.straight_before_turn = params.straight_before_turn && params.road_model;
   s.centre_within_lane = params.lane_fit_within_lane && params.road_model;
+  s.corners = params.lane_corners && params.road_model;
   return s;
 }
 
@@ -60,24 +61,88 @@ double StraightBeforeTurn(const LaneCorridor& c, double reach_m) {
 
 namespace {
 
+// How far along heading h0 from a the straight through a with heading h0 meets the straight
+// through b with heading h2 (*out: how far along h2 from there to b): a + in u0 = b - out u2.
+double MeetingDistance(const Point2& a, double h0, const Point2& b, double h2,
+                       double* out = nullptr) {
+  const double u0x = std::cos(h0), u0y = std::sin(h0), u2x = std::cos(h2), u2y = std::sin(h2);
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double det = u0x * u2y - u0y * u2x;
+  if (out) *out = (u0x * dy - u0y * dx) / det;
+  return (dx * u2y - dy * u2x) / det;
+}
+
+}  // namespace
+
+std::optional<Corner> CornerOf(const std::vector<Point2>& centre, double s0, double s2) {
+  constexpr double kStep = 0.5;                             // m
+  constexpr double kMaxCornerTurnRad = 2.9670597283903604;  // 170 degrees
+  if (centre.size() < 2 || !(s2 > s0)) return std::nullopt;
+  double h0 = 0.0, h2 = 0.0;
+  const Point2 p0 = PointAlong(centre, s0, &h0), p2 = PointAlong(centre, s2, &h2);
+  const double turn = WrapAngle(h2 - h0);
+  if (std::fabs(turn) < kStraightThenTurnMinRad || std::fabs(turn) > kMaxCornerTurnRad)
+    return std::nullopt;
+  double out = 0.0;
+  const double in = MeetingDistance(p0, h0, p2, h2, &out);
+  if (!(in > kStep) || !(out > kStep)) return std::nullopt;
+  // Where the line leaves the first straight's heading and takes the second's.
+  double begin = s0, end = s2;
+  for (double s = s0 + kStep; s < s2; s += kStep) {
+    double h = 0.0;
+    PointAlong(centre, s, &h);
+    if (std::fabs(WrapAngle(h - h0)) > kStraightToleranceRad) break;
+    begin = s;
+  }
+  for (double s = s2 - kStep; s > s0; s -= kStep) {
+    double h = 0.0;
+    PointAlong(centre, s, &h);
+    if (std::fabs(WrapAngle(h - h2)) > kStraightToleranceRad) break;
+    end = s;
+  }
+  // A vehicle already in the turn keeps the parabola through the turn: the corner is for a
+  // straight road that leads into it.
+  if (begin - s0 < kMinCornerStraightM) return std::nullopt;
+  Corner c;
+  c.corner = Point2{p0.x + in * std::cos(h0), p0.y + in * std::sin(h0)};
+  c.in_m = in;
+  c.out_m = out;
+  const double tangent = 0.5 * ((in - (begin - s0)) + (out - (s2 - end)));
+  c.tangent_m = std::fmin(std::fmax(tangent, 1.0), std::fmin(in, out));
+  return c;
+}
+
+namespace {
+
 // The lanes sampled over exactly `reach_m` (see SampleLaneSet); nullopt when the own lane's
 // samples cannot be fitted in the frame the estimator will fit them in. *within_lane: false
 // when LaneSampling::centre_within_lane finds the own lane's fitted centre out of the lane.
 std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
                                   const LaneSampling& sampling, bool* within_lane) {
   *within_lane = true;
-  const double straight = sampling.straight_before_turn ? StraightBeforeTurn(c, reach_m) : 0.0;
+  const std::optional<Corner> corner =
+      sampling.corners ? CornerOf(c.centre, c.position_m, c.position_m + reach_m) : std::nullopt;
+  const double straight =
+      sampling.straight_before_turn && !corner ? StraightBeforeTurn(c, reach_m) : 0.0;
   const double middle = straight > 0.0 ? straight : 0.5 * reach_m;
   const double s[3] = {c.position_m, c.position_m + middle, c.position_m + reach_m};
-  // Each divider is the centre line shifted left by `offset` (negative: right).
+  // Each divider is the centre line shifted left by `offset` (negative: right); a corner's
+  // middle point is where its shifted straights meet.
   auto divider = [&](double offset) {
     LaneDivider d;
+    Point2 world[3];
+    double heading[3];
     for (int i = 0; i < 3; ++i) {
-      double heading = 0.0;
-      const Point2 p = PointAlong(c.centre, s[i], &heading);
-      const double wx = p.x - std::sin(heading) * offset, wy = p.y + std::cos(heading) * offset;
-      WorldToLocal(X_WV, wx, wy, &d.points[i].x, &d.points[i].y);
+      const Point2 p = PointAlong(c.centre, s[i], &heading[i]);
+      world[i] = Point2{p.x - std::sin(heading[i]) * offset, p.y + std::cos(heading[i]) * offset};
     }
+    if (corner) {
+      const double in = MeetingDistance(world[0], heading[0], world[2], heading[2]);
+      world[1] =
+          Point2{world[0].x + in * std::cos(heading[0]), world[0].y + in * std::sin(heading[0])};
+    }
+    for (int i = 0; i < 3; ++i)
+      WorldToLocal(X_WV, world[i].x, world[i].y, &d.points[i].x, &d.points[i].y);
     return d;
   };
   const double half = 0.5 * c.width_m;
@@ -88,7 +153,9 @@ std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const P
   if (c.right)
     set.right = Lane{divider(-half), divider(-half - c.right->width_m), c.right->counter_traffic};
   for (std::optional<Lane>* lane : {&set.own, &set.left, &set.right}) {
-    if (*lane) (*lane)->straight_to_middle = straight > 0.0;
+    if (!*lane) continue;
+    (*lane)->straight_to_middle = straight > 0.0;
+    if (corner) (*lane)->corner_tangent_m = corner->tangent_m;
   }
   // The estimator needs every lane's samples to run forward in the vehicle's frame with the
   // left divider left of the right one. Offsetting a tight turn's centre line can break that
@@ -119,8 +186,9 @@ std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const P
   // The parabola through three samples can leave the lane between them (a short straight and
   // a sharp turn: it swings out to the other side first); then the lane is fitted over a
   // shorter reach, which follows the road where the vehicle is.
-  if (sampling.centre_within_lane) {
-    std::vector<Point2> centre;
+  // The corridor's centre line every metre of the reach, in the vehicle's frame.
+  std::vector<Point2> centre;
+  if (sampling.centre_within_lane || corner) {
     for (double d = 0.0; d <= reach_m; d += 1.0) {
       double heading = 0.0;
       const Point2 p = PointAlong(c.centre, c.position_m + d, &heading);
@@ -128,8 +196,35 @@ std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const P
       WorldToLocal(X_WV, p.x, p.y, &local.x, &local.y);
       centre.push_back(local);
     }
-    *within_lane = LaneCentreDeviation(*set.own, frame, centre) <= 0.5 * c.width_m;
   }
+  // A corner turns over the tangent length whose fit keeps closest to the road (the
+  // estimator's own fit, LaneCentreDeviation): CornerOf's estimate or one of 12 from 1 m to the
+  // longer straight (a turn that begins before the vehicle or ends beyond the reach may fit the
+  // road best).
+  if (corner) {
+    constexpr int kTangents = 12;
+    const double longest = std::fmax(corner->in_m, corner->out_m);
+    Lane probe = *set.own;
+    double best = HUGE_VAL, best_tangent = corner->tangent_m;
+    for (int k = 0; k <= kTangents; ++k) {  // CornerOf's estimate, then the grid
+      probe.corner_tangent_m =
+          k == 0 ? corner->tangent_m : 1.0 + (longest - 1.0) * (k - 1) / (kTangents - 1);
+      if (!(probe.corner_tangent_m > 0.0) || !LaneProblem(probe, frame).empty()) continue;
+      const double deviation = LaneCentreDeviation(probe, frame, centre);
+      if (deviation < best) {
+        best = deviation;
+        best_tangent = probe.corner_tangent_m;
+      }
+    }
+    for (std::optional<Lane>* lane : {&set.own, &set.left, &set.right}) {
+      if (*lane) (*lane)->corner_tangent_m = best_tangent;
+    }
+  }
+  // The parabola through three samples can leave the lane between them (a short straight and
+  // a sharp turn: it swings out to the other side first); then the lane is fitted over a
+  // shorter reach, which follows the road where the vehicle is.
+  if (sampling.centre_within_lane)
+    *within_lane = LaneCentreDeviation(*set.own, frame, centre) <= 0.5 * c.width_m;
   if (set.left && !usable(set.left)) set.left.reset();
   if (set.right && !usable(set.right)) set.right.reset();
   return set;

@@ -51,6 +51,10 @@ struct LaneSampling {
    *  half the lane's width from the corridor's centre line (LaneCentreDeviation, checked every
    *  metre of the sampled reach) is not used at that reach (SampleLaneSet tries shorter). */
   bool centre_within_lane{true};
+  /** Params::lane_corners: a centre line that turns by at least kStraightThenTurnMinRad
+   *  between the first and the last sample is sampled as a corner (CornerOf), with the
+   *  tangent length (of 8 from 1 m to the shorter straight) whose fit keeps closest to it. */
+  bool corners{false};
 };
 constexpr double kStraightToleranceRad = 0.05235987755982989;   // 3 degrees
 constexpr double kStraightThenTurnMinRad = 0.2617993877991494;  // 15 degrees
@@ -67,6 +71,28 @@ constexpr double kTurnEndToleranceRad = 0.05235987755982989;  // 3 degrees
 constexpr double kTurnFrameMaxTurnRad = 2.0943951023931957;  // 120 degrees
 /** ... but never closer than this (a vehicle standing across its lane keeps a usable reach). */
 constexpr double kMinSampledReachM = 5.0;
+
+/** A turn of the centre line between arc lengths s0 and s2, as Lane::corner_tangent_m sends
+ *  it: the corner where the straights along the line's direction at s0 and at s2 meet, how
+ *  far along them (from the corner) the turn begins and ends, the straights' lengths. */
+struct Corner {
+  Point2 corner;
+  double tangent_m{0.0};
+  double in_m{0.0};   ///< from the point at s0 to the corner
+  double out_m{0.0};  ///< from the corner to the point at s2
+};
+
+/** A corner needs the road to run straight (within kStraightToleranceRad) for this far ahead
+ *  of the vehicle: one already in the turn keeps the parabola through the turn. */
+constexpr double kMinCornerStraightM = 2.0;
+
+/** The corner of the centre line between s0 and s2, when it runs straight from s0 for at least
+ *  kMinCornerStraightM, turns by at least kStraightThenTurnMinRad (and less than 170 degrees)
+ *  by s2, and both straights run forward to their meeting point. The turn's tangent length
+ *  is the mean of the lengths, from the corner, at which the line leaves the first straight's
+ *  heading and takes the second's (within kStraightToleranceRad; 0.5 m steps), at least 1 m
+ *  and at most the shorter straight. */
+std::optional<Corner> CornerOf(const std::vector<Point2>& centre, double s0, double s2);
 
 /** The sampling for the estimator's parameters. */
 LaneSampling LaneSamplingFor(const Params& params);

@@ -166,6 +166,32 @@ TEST(SceneIo, StraightToMiddleRoundTrips) {
   }
 }
 
+// Catches a corner that is not written, not read back (or read as another number), a reader
+// that accepts a corner of no length, and one that stops after the first shape word.
+TEST(SceneIo, CornerRoundTrips) {
+  Scene scene = testing::RandomScene(6, 1, 0, true);
+  scene.ego.lanes = bench::StraightThreeLanes();
+  scene.ego.lanes.own->corner_tangent_m = 6.25;
+  scene.ego.lanes.own->straight_to_middle = true;
+  std::stringstream file;
+  WriteScene(file, scene);
+  const Scene back = ReadScene(file);
+  ASSERT_TRUE(back.ego.lanes.own && back.ego.lanes.left);
+  EXPECT_EQ(back.ego.lanes.own->corner_tangent_m, 6.25);
+  EXPECT_TRUE(back.ego.lanes.own->straight_to_middle);
+  EXPECT_EQ(back.ego.lanes.left->corner_tangent_m, 0.0);
+  std::istringstream bad(
+      "criticality-scene 1\nego e 0 0 0 1 0 0 0 4.5 1.8 -\n"
+      "lane own 0 0 1 10 1 20 1 0 -1 10 -1 20 -1 corner 0\n");
+  try {
+    ReadScene(bad, "f.scene");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("f.scene:3: corner tangent length"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(SceneIo, TypesAndCarriagesRoundTrip) {
   Scene scene = testing::RandomScene(5, 3, 1, true);
   ASSERT_EQ(scene.vehicles.size(), 3u);

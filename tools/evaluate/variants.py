@@ -78,6 +78,10 @@ VARIANTS = [
             "ours using a lane's samples over the full reach even where their parabola leaves "
             "the lane (--no-lane-fit-check)",
             {"act": "warn", "no-lane-fit-check": "true"}),
+    Variant("lane-corners",
+            "experiment (ours): lanes that turn are sent as corners: straight, a parabola "
+            "tangent to both straights, straight (--lane-corners)",
+            {"act": "warn", "lane-corners": "true"}),
     Variant("no-junction-shapes",
             "ours drawing the lanes ahead through a junction as the chord between the lanes, "
             "not along its internal lanes (--no-junction-shapes)",

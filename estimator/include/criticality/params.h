@@ -226,6 +226,17 @@ struct Params {
    *  parabola tangent to it through the third (estimator/ALGORITHM.md "Straight road before a
    *  turn"); with false the mark is ignored. Project choice; paper-literal: false. */
   bool straight_before_turn{true};
+  /** The SUMO driver's lane sampling: a lane that runs straight for 2 m ahead of the vehicle
+   *  and then turns by at least 15 degrees over its sampled reach is sent as a corner (Lane::corner_tangent_m): the straights along the road's
+   *  direction at its first and last samples, their meeting point, and where the turn begins
+   *  and ends, so that the divider is straight, a parabola tangent to both straights, and
+   *  straight again. A parabola through three samples of a straight road into a 90 degree
+   *  junction turn swings out on the straight and turns on past the turn's end (traced in
+   *  bench/RESULTS.md, 2026-12-05, "corners"). Replaces straight_before_turn's sampling where it
+   *  applies. An experiment, off: fewer false alarms at 0.1 s steps, more at 1 s, more on the
+   *  held-out set as a whole (bench/RESULTS.md; plugin/scenes/lane_corridor.h; driver
+   *  --lane-corners). */
+  bool lane_corners{false};
   /** The SUMO driver's lane sampling: a lane whose fitted centre line leaves the lane between
    *  its samples (lies farther than half the lane's width from its centre line, as a parabola
    *  through three samples of a short straight and a sharp junction turn does: 3.4 m towards

@@ -41,6 +41,16 @@ struct Lane {
    *  fitted as the line through its first two points, continued by the parabola tangent to it
    *  through the third (Params::straight_before_turn). Needs x0 < x1 < x2 on both dividers. */
   bool straight_to_middle{false};
+  /** > 0: the lane turns at a corner (a junction turn, a bend between two straights). The
+   *  middle sample of each divider is then not on it but the corner: where the divider's
+   *  straight through its first sample, along the road's direction there, meets its straight
+   *  through its last sample, along the road's direction there. The divider follows the first
+   *  straight, turns along the parabola tangent to both straights, and follows the second; the
+   *  turn begins and ends this far (m, along the straights) from the corner. Lets three points
+   *  carry a straight road into a sharp turn and out of it, which a parabola through three
+   *  points on the road cannot (it swings out before the turn and on past its end;
+   *  Params::lane_corners). Needs x0 < x1 < x2 on both dividers. */
+  double corner_tangent_m{0.0};
 };
 
 /** Up to three lanes around an observer (paper Sec. IV-A): its own, the immediate left and the

@@ -9,7 +9,7 @@
  *    euler-update-step DT
  *    bodies-on-path
  *    ego ID x y yaw speed accel yaw_rate sideslip length width height|-
- *    lane own|left|right COUNTER  lx0 ly0 lx1 ly1 lx2 ly2  rx0 ry0 rx1 ry1 rx2 ry2 [straight-to-middle]
+ *    lane own|left|right COUNTER  lx0 ly0 lx1 ly1 lx2 ly2  rx0 ry0 rx1 ry1 rx2 ry2 [straight-to-middle] [corner T]
  *    vehicle ID x y yaw speed accel yaw_rate sideslip length width height|- LANES(0|1)
  *    stop red|yellow|yield DISTANCE
  *    pedestrian ID x y yaw speed accel yaw_rate sideslip length width
@@ -30,7 +30,7 @@
  *  pedestrian line before it (absent: not set), a `route-end` line the ObjectState::route_end_m
  *  of the ego or vehicle line before it, a `braking-causes-known` line sets
  *  ObjectState::braking_causes_known of the ego or vehicle line before it. A lane line ending in `straight-to-middle` sets
- *  Lane::straight_to_middle. An `euler-update-step` line (anywhere after the header; absent: 0)
+ *  Lane::straight_to_middle, one with `corner T` Lane::corner_tangent_m = T. An `euler-update-step` line (anywhere after the header; absent: 0)
  *  sets Scene::euler_update_step_s, a `bodies-on-path` line (likewise; absent: false)
  *  Scene::bodies_on_path. Version 1 throughout: `type` and `carriage` lines were added to it,
  *  and a file without them is the same as before they existed (a reader from before them

@@ -159,6 +159,57 @@ TEST(LaneFit, StraightThenParabolaNeedsIncreasingX) {
   EXPECT_EQ(fit.x_start, -HUGE_VAL);
 }
 
+// A corner: straight along y = 0 to x = 6, a parabola tangent to both straights, the straight
+// y = x - 10 from x = 14 (the corner at x = 10 is halfway). Catches a wrong tangent slope,
+// a parabola that does not meet the second straight, one that curves on beyond x_end or
+// starts before x_start, and a fit that accepts points that do not run forward.
+TEST(LaneFit, CornerFollowsBothStraights) {
+  const double x[3] = {0.0, 10.0, 20.0}, y[3] = {0.0, 0.0, 10.0};
+  Parabola p;
+  ASSERT_TRUE(FitCorner(x, y, 6.0, 14.0, &p));
+  EXPECT_NEAR(p.Eval(-5.0), 0.0, 1e-12);
+  EXPECT_NEAR(p.Eval(6.0), 0.0, 1e-12);
+  EXPECT_NEAR(p.Slope(6.0), 0.0, 1e-12);
+  EXPECT_NEAR(p.Eval(14.0), 4.0, 1e-12);
+  EXPECT_NEAR(p.Slope(14.0), 1.0, 1e-12);
+  EXPECT_NEAR(p.Eval(20.0), 10.0, 1e-12);
+  EXPECT_NEAR(p.Eval(40.0), 30.0, 1e-12);
+  EXPECT_NEAR(p.Eval(10.0), 1.0, 1e-12);  // halfway between the corner and the chord's middle
+  EXPECT_EQ(p.Curvature(20.0), 0.0);
+  EXPECT_GT(p.Curvature(10.0), 0.0);
+  const double back[3] = {0.0, 25.0, 20.0};
+  EXPECT_FALSE(FitCorner(back, y, 6.0, 14.0, &p));
+  EXPECT_FALSE(FitCorner(x, y, 14.0, 6.0, &p));
+}
+
+// The host fit of a corner lane: both dividers turn over the same x and the centre follows
+// the road's straights. Catches dividers fitted over their own spans (their blend would leave
+// the straights), a corner flag the fit ignores, and a frame not across the bisector.
+TEST(LaneFit, HostFitOfACornerLane) {
+  // A 90 degree left turn: straight along y = 0 to the corner (20, 0), then north.
+  LaneSet lanes;
+  Lane lane;
+  lane.left.points = {Point2{0, 1.6}, Point2{18.4, 1.6}, Point2{18.4, 20}};
+  lane.right.points = {Point2{0, -1.6}, Point2{21.6, -1.6}, Point2{21.6, 20}};
+  lane.corner_tangent_m = 8.0;
+  lanes.own = lane;
+  Params p;
+  EXPECT_NEAR(internal::LaneFrameAngle(lanes, p), 0.25 * kPi, 1e-9);
+  const internal::FittedLanes fitted = internal::FitLanes(lanes, "lanes", p);
+  EXPECT_EQ(fitted.own->left.x_start, fitted.own->right.x_start);
+  EXPECT_EQ(fitted.own->left.x_end, fitted.own->right.x_end);
+  const Parabola centre = fitted.own->Centre();
+  auto offset = [&](double x, double y) { return centre.OffsetFrom(x, y); };
+  EXPECT_NEAR(offset(0.0, 0.0), 0.0, 1e-9);  // on the first straight
+  EXPECT_NEAR(offset(8.0, 0.0), 0.0, 1e-9);
+  EXPECT_NEAR(offset(20.0, 15.0), 0.0, 1e-9);  // on the second straight
+  EXPECT_NEAR(offset(20.0, 30.0), 0.0, 1e-9);
+  // Without the flag the three points (two of them off the road) give another curve.
+  lanes.own->corner_tangent_m = 0.0;
+  EXPECT_GT(std::fabs(internal::FitLanes(lanes, "lanes", p).own->Centre().OffsetFrom(8.0, 0.0)),
+            0.5);
+}
+
 TEST(LaneFit, HostFitHonoursStraightToMiddleOnlyWhenAsked) {
   LaneSet lanes;
   Lane lane;

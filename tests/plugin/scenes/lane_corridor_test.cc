@@ -12,6 +12,32 @@
 namespace criticality::plugin {
 namespace {
 
+// The traced corridor of a car 14.5 m before a sharp junction turn (SUMO's shapes, lane -9_2
+// into :1_3_0 and :1_21_0; bench/RESULTS.md, tenth stop), and the car's centre on it.
+LaneCorridor TracedTurnCorridor() {
+  LaneCorridor c;
+  c.centre = {{861.18, 663.5},  {786.92, 552.74}, {785.75, 549.79}, {784.31, 546.13},
+              {785.93, 540.87}, {791.04, 536.55}, {798.9, 532.77},  {976.9, 460.42}};
+  c.position_m = std::hypot(861.18 - 795.007, 663.5 - 564.802);
+  c.width_m = 3.2;
+  c.left = c.right = NeighbourLane{3.2, false};
+  return c;
+}
+const Pose2 kTracedTurnPose{795.007, 564.802, -2.1614};
+
+// A corridor's true centre line every metre of the reach, in the vehicle's frame.
+std::vector<Point2> CentreLine(const LaneCorridor& c, const Pose2& X_WV, double reach_m) {
+  std::vector<Point2> centre;
+  for (double d = 0.0; d <= reach_m; d += 1.0) {
+    double heading = 0.0;
+    const Point2 w = PointAlong(c.centre, c.position_m + d, &heading);
+    Point2 p;
+    WorldToLocal(X_WV, w.x, w.y, &p.x, &p.y);
+    centre.push_back(p);
+  }
+  return centre;
+}
+
 TEST(LaneCorridor, NorthboundLaneBecomesStraightLanesInTheVehicleFrame) {
   // A north-going lane (vertical in the world) with a neighbour on each side: in the vehicle's
   // frame the dividers must be horizontal lines at +-1.6 and +-1.6 + 3.2.
@@ -183,23 +209,10 @@ TEST(LaneCorridor, AStraightBeforeATurnIsSampledToWhereTheTurnStarts) {
 // the lane to the right; the car's reference followed it into the truck (p 0.96, no collision
 // followed). With LaneSampling::centre_within_lane the lane is sampled over a shorter reach.
 TEST(LaneCorridor, ALaneWhoseFitLeavesItIsSampledShorter) {
-  LaneCorridor c;
-  c.centre = {{861.18, 663.5},  {786.92, 552.74}, {785.75, 549.79}, {784.31, 546.13},
-              {785.93, 540.87}, {791.04, 536.55}, {798.9, 532.77},  {976.9, 460.42}};
-  const Pose2 X_WV{795.007, 564.802, -2.1614};  // the car's centre, on the lane's centre line
-  c.position_m = std::hypot(861.18 - X_WV.x, 663.5 - X_WV.y);
-  c.width_m = 3.2;
-  c.left = c.right = NeighbourLane{3.2, false};
+  const LaneCorridor c = TracedTurnCorridor();
+  const Pose2 X_WV = kTracedTurnPose;
   constexpr double kReach = 36.0;
-  // The true centre line every metre of the reach, in the car's frame.
-  std::vector<Point2> centre;
-  for (double d = 0.0; d <= kReach; d += 1.0) {
-    double heading = 0.0;
-    const Point2 w = PointAlong(c.centre, c.position_m + d, &heading);
-    Point2 p;
-    WorldToLocal(X_WV, w.x, w.y, &p.x, &p.y);
-    centre.push_back(p);
-  }
+  const std::vector<Point2> centre = CentreLine(c, X_WV, kReach);
   const std::vector<Point2> approach(centre.begin(), centre.begin() + 15);  // the straight
   auto deviation = [](const LaneSet& set, const std::vector<Point2>& line) {
     return LaneCentreDeviation(*set.own, LaneFrameAngle(set, Params{}), line);
@@ -224,6 +237,82 @@ TEST(LaneCorridor, ALaneWhoseFitLeavesItIsSampledShorter) {
   EXPECT_NEAR(road.own->left.points[2].x, 33.0, 1e-9);
   EXPECT_FALSE(LaneSamplingFor(ParamsPreset("paper-literal")).centre_within_lane);
   EXPECT_TRUE(LaneSamplingFor(Params{}).centre_within_lane);
+}
+
+// A road east, a 90 degree left turn of radius 10 m, a road north: the corner is where the
+// roads' lines meet, the turn begins and ends R tan(45 deg) = 10 m from it. Catches a corner
+// from the wrong headings, a tangent length measured from the wrong end, and a corner
+// reported for a road that does not turn enough.
+TEST(LaneCorridor, CornerOfAStraightATurnAndAStraight) {
+  std::vector<Point2> line{{0, 0}, {20, 0}};
+  for (int i = 1; i <= 90; ++i) {
+    const double a = i * kPi / 180.0;
+    line.push_back(Point2{20 + 10 * std::sin(a), 10 - 10 * std::cos(a)});
+  }
+  line.push_back(Point2{30, 40});
+  const double arc = 10.0 * kPi / 2.0;
+  const std::optional<Corner> c = CornerOf(line, 0.0, 20.0 + arc + 20.0);
+  ASSERT_TRUE(c);
+  EXPECT_NEAR(c->corner.x, 30.0, 0.05);
+  EXPECT_NEAR(c->corner.y, 0.0, 0.05);
+  EXPECT_NEAR(c->in_m, 30.0, 0.05);
+  EXPECT_NEAR(c->out_m, 30.0, 0.05);
+  EXPECT_NEAR(c->tangent_m, 10.0, 0.6);  // the line's headings are read every 0.5 m
+  // 2 m before the turn: still a corner; in the turn: none (the parabola through the turn).
+  EXPECT_TRUE(CornerOf(line, 17.5, 20.0 + arc + 20.0));
+  EXPECT_FALSE(CornerOf(line, 20.0 + 0.5 * arc, 20.0 + arc + 20.0));
+  EXPECT_FALSE(CornerOf(line, 19.0, 20.0 + arc + 20.0));
+  EXPECT_FALSE(CornerOf(line, 0.0, 19.0));                            // straight
+  EXPECT_FALSE(CornerOf(line, 0.0, 20.0 + 10.0 * 0.2));               // turned 11 degrees
+  EXPECT_FALSE(CornerOf(line, 20.0 + arc + 1.0, 20.0 + arc + 20.0));  // straight again
+}
+
+// The traced corridor of ALaneWhoseFitLeavesItIsSampledShorter (a 14 m straight into a sharp
+// junction turn), sampled as a corner over the full reach: its fitted centre is the straight
+// on the straight and stays within the lane, where three samples on the road left it.
+// Catches corner samples that are not the straights' meeting point, a tangent not chosen by
+// its fit, and a corner the sampler does not mark.
+TEST(LaneCorridor, ACornerFollowsAShortStraightIntoASharpTurn) {
+  const LaneCorridor c = TracedTurnCorridor();
+  const Pose2 X_WV = kTracedTurnPose;
+  constexpr double kReach = 36.0;
+  const std::vector<Point2> centre = CentreLine(c, X_WV, kReach);
+  LaneSampling corners;
+  corners.corners = true;
+  corners.centre_within_lane = false;
+  const LaneSet set = SampleLaneSet(c, kReach, X_WV, corners);
+  ASSERT_TRUE(set.own && set.left && set.right);
+  EXPECT_GT(set.own->corner_tangent_m, 0.0);
+  EXPECT_EQ(set.left->corner_tangent_m, set.own->corner_tangent_m);
+  EXPECT_FALSE(set.own->straight_to_middle);
+  EXPECT_NEAR(set.own->left.points[2].y, 12.4, 0.1);  // the full reach
+  Params params;
+  params.lane_corners = true;
+  const std::vector<Point2> approach(centre.begin(), centre.begin() + 15);  // the straight
+  auto deviation = [&](const LaneSet& lanes, const std::vector<Point2>& line) {
+    return LaneCentreDeviation(*lanes.own, LaneFrameAngle(lanes, params), line);
+  };
+  LaneSampling samples;
+  samples.centre_within_lane = false;
+  const LaneSet three = SampleLaneSet(c, kReach, X_WV, samples);
+  ASSERT_TRUE(three.own);
+  // Over the whole reach the corner keeps within the lane (the lane-fit check takes it at the
+  // full reach) and strays less than half as far as three samples on the road; on the
+  // straight it keeps within 0.1 m of it.
+  EXPECT_LT(deviation(set, centre), 0.5 * c.width_m);
+  EXPECT_LT(deviation(set, centre), 0.5 * deviation(three, centre));
+  EXPECT_LT(deviation(set, approach), 0.1);
+  EXPECT_GT(deviation(three, approach), 0.5);
+  // The tangent length sent is the one whose fit keeps closest to the road: here closer than
+  // CornerOf's first estimate from where the road's heading changes.
+  const std::optional<Corner> first = CornerOf(c.centre, c.position_m, c.position_m + kReach);
+  ASSERT_TRUE(first);
+  EXPECT_NE(set.own->corner_tangent_m, first->tangent_m);
+  LaneSet estimate = set;
+  estimate.own->corner_tangent_m = first->tangent_m;
+  EXPECT_LT(deviation(set, centre), deviation(estimate, centre));
+  EXPECT_FALSE(LaneSamplingFor(Params{}).corners);
+  EXPECT_TRUE(LaneSamplingFor(params).corners);
 }
 
 TEST(LaneCorridor, OnlyAStraightFollowedByATurnIsSampledToItsEnd) {
