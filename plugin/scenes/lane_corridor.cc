@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "criticality/errors.h"
 #include "criticality/estimator.h"
 
 namespace criticality::plugin {
@@ -43,20 +44,45 @@ double LaneYawRate(const LaneCorridor& c, double speed, double window_m) {
   return speed * WrapAngle(ahead - behind) / (2.0 * window_m);
 }
 
+namespace {
+
+constexpr double kHeadingStep = 0.5;  // m, where headings along a line are read
+
+// How far from s0 (up to max_m, in kHeadingStep steps) the line keeps within
+// kStraightToleranceRad of `heading`; step < 0 reads backwards from s0.
+double StraightFrom(const std::vector<Point2>& line, double s0, double heading, double max_m,
+                    double step = kHeadingStep) {
+  double straight = 0.0;
+  for (double d = kHeadingStep; d <= max_m; d += kHeadingStep) {
+    double h = 0.0;
+    PointAlong(line, s0 + (step < 0.0 ? -d : d), &h);
+    if (std::fabs(WrapAngle(h - heading)) > kStraightToleranceRad) break;
+    straight = d;
+  }
+  return straight;
+}
+
+}  // namespace
+
 double StraightBeforeTurn(const LaneCorridor& c, double reach_m) {
-  constexpr double kStep = 0.5;  // m
   double start_heading = 0.0, end_heading = 0.0;
   PointAlong(c.centre, c.position_m, &start_heading);
   PointAlong(c.centre, c.position_m + reach_m, &end_heading);
   if (std::fabs(WrapAngle(end_heading - start_heading)) < kStraightThenTurnMinRad) return 0.0;
-  double straight = 0.0;
-  for (double d = kStep; d <= reach_m; d += kStep) {
-    double heading = 0.0;
-    PointAlong(c.centre, c.position_m + d, &heading);
-    if (std::fabs(WrapAngle(heading - start_heading)) > kStraightToleranceRad) break;
-    straight = d;
-  }
+  const double straight = StraightFrom(c.centre, c.position_m, start_heading, reach_m);
   return straight >= kMinStraightM && straight <= reach_m - kMinTurnM ? straight : 0.0;
+}
+
+std::vector<Point2> CentreLineAhead(const LaneCorridor& c, const Pose2& X_WV, double reach_m) {
+  std::vector<Point2> centre;
+  for (double d = 0.0; d <= reach_m; d += 1.0) {
+    double heading = 0.0;
+    const Point2 p = PointAlong(c.centre, c.position_m + d, &heading);
+    Point2 local;
+    WorldToLocal(X_WV, p.x, p.y, &local.x, &local.y);
+    centre.push_back(local);
+  }
+  return centre;
 }
 
 namespace {
@@ -75,7 +101,6 @@ double MeetingDistance(const Point2& a, double h0, const Point2& b, double h2,
 }  // namespace
 
 std::optional<Corner> CornerOf(const std::vector<Point2>& centre, double s0, double s2) {
-  constexpr double kStep = 0.5;                             // m
   constexpr double kMaxCornerTurnRad = 2.9670597283903604;  // 170 degrees
   if (centre.size() < 2 || !(s2 > s0)) return std::nullopt;
   double h0 = 0.0, h2 = 0.0;
@@ -85,21 +110,11 @@ std::optional<Corner> CornerOf(const std::vector<Point2>& centre, double s0, dou
     return std::nullopt;
   double out = 0.0;
   const double in = MeetingDistance(p0, h0, p2, h2, &out);
-  if (!(in > kStep) || !(out > kStep)) return std::nullopt;
+  if (!(in > kHeadingStep) || !(out > kHeadingStep)) return std::nullopt;
   // Where the line leaves the first straight's heading and takes the second's.
-  double begin = s0, end = s2;
-  for (double s = s0 + kStep; s < s2; s += kStep) {
-    double h = 0.0;
-    PointAlong(centre, s, &h);
-    if (std::fabs(WrapAngle(h - h0)) > kStraightToleranceRad) break;
-    begin = s;
-  }
-  for (double s = s2 - kStep; s > s0; s -= kStep) {
-    double h = 0.0;
-    PointAlong(centre, s, &h);
-    if (std::fabs(WrapAngle(h - h2)) > kStraightToleranceRad) break;
-    end = s;
-  }
+  const double inside = std::nextafter(s2 - s0, 0.0);  // strictly between s0 and s2
+  const double begin = s0 + StraightFrom(centre, s0, h0, inside);
+  const double end = s2 - StraightFrom(centre, s2, h2, inside, -kHeadingStep);
   // A vehicle already in the turn keeps the parabola through the turn: the corner is for a
   // straight road that leads into it.
   if (begin - s0 < kMinCornerStraightM) return std::nullopt;
@@ -183,20 +198,9 @@ std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const P
     return LaneProblem(*lane, frame).empty();
   };
   if (!usable(set.own)) return std::nullopt;
-  // The parabola through three samples can leave the lane between them (a short straight and
-  // a sharp turn: it swings out to the other side first); then the lane is fitted over a
-  // shorter reach, which follows the road where the vehicle is.
-  // The corridor's centre line every metre of the reach, in the vehicle's frame.
-  std::vector<Point2> centre;
-  if (sampling.centre_within_lane || corner) {
-    for (double d = 0.0; d <= reach_m; d += 1.0) {
-      double heading = 0.0;
-      const Point2 p = PointAlong(c.centre, c.position_m + d, &heading);
-      Point2 local;
-      WorldToLocal(X_WV, p.x, p.y, &local.x, &local.y);
-      centre.push_back(local);
-    }
-  }
+  const std::vector<Point2> centre = sampling.centre_within_lane || corner
+                                         ? CentreLineAhead(c, X_WV, reach_m)
+                                         : std::vector<Point2>{};
   // A corner turns over the tangent length whose fit keeps closest to the road (the
   // estimator's own fit, LaneCentreDeviation): CornerOf's estimate or one of 12 from 1 m to the
   // longer straight (a turn that begins before the vehicle or ends beyond the reach may fit the
@@ -209,8 +213,13 @@ std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const P
     for (int k = 0; k <= kTangents; ++k) {  // CornerOf's estimate, then the grid
       probe.corner_tangent_m =
           k == 0 ? corner->tangent_m : 1.0 + (longest - 1.0) * (k - 1) / (kTangents - 1);
-      if (!(probe.corner_tangent_m > 0.0) || !LaneProblem(probe, frame).empty()) continue;
-      const double deviation = LaneCentreDeviation(probe, frame, centre);
+      if (!(probe.corner_tangent_m > 0.0)) continue;
+      double deviation = HUGE_VAL;
+      try {  // one fit: LaneCentreDeviation throws where LaneProblem would name a problem
+        deviation = LaneCentreDeviation(probe, frame, centre);
+      } catch (const InputError&) {
+        continue;
+      }
       if (deviation < best) {
         best = deviation;
         best_tangent = probe.corner_tangent_m;

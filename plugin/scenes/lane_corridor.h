@@ -72,6 +72,10 @@ constexpr double kTurnFrameMaxTurnRad = 2.0943951023931957;  // 120 degrees
 /** ... but never closer than this (a vehicle standing across its lane keeps a usable reach). */
 constexpr double kMinSampledReachM = 5.0;
 
+/** The corridor's centre line every metre of the reach (from its position), in the frame of
+ *  the vehicle at X_WV: what the lane-fit check and a corner's fit are measured against. */
+std::vector<Point2> CentreLineAhead(const LaneCorridor& c, const Pose2& X_WV, double reach_m);
+
 /** A turn of the centre line between arc lengths s0 and s2, as Lane::corner_tangent_m sends
  *  it: the corner where the straights along the line's direction at s0 and at s2 meet, how
  *  far along them (from the corner) the turn begins and ends, the straights' lengths. */

@@ -25,19 +25,6 @@ LaneCorridor TracedTurnCorridor() {
 }
 const Pose2 kTracedTurnPose{795.007, 564.802, -2.1614};
 
-// A corridor's true centre line every metre of the reach, in the vehicle's frame.
-std::vector<Point2> CentreLine(const LaneCorridor& c, const Pose2& X_WV, double reach_m) {
-  std::vector<Point2> centre;
-  for (double d = 0.0; d <= reach_m; d += 1.0) {
-    double heading = 0.0;
-    const Point2 w = PointAlong(c.centre, c.position_m + d, &heading);
-    Point2 p;
-    WorldToLocal(X_WV, w.x, w.y, &p.x, &p.y);
-    centre.push_back(p);
-  }
-  return centre;
-}
-
 TEST(LaneCorridor, NorthboundLaneBecomesStraightLanesInTheVehicleFrame) {
   // A north-going lane (vertical in the world) with a neighbour on each side: in the vehicle's
   // frame the dividers must be horizontal lines at +-1.6 and +-1.6 + 3.2.
@@ -212,7 +199,7 @@ TEST(LaneCorridor, ALaneWhoseFitLeavesItIsSampledShorter) {
   const LaneCorridor c = TracedTurnCorridor();
   const Pose2 X_WV = kTracedTurnPose;
   constexpr double kReach = 36.0;
-  const std::vector<Point2> centre = CentreLine(c, X_WV, kReach);
+  const std::vector<Point2> centre = CentreLineAhead(c, X_WV, kReach);
   const std::vector<Point2> approach(centre.begin(), centre.begin() + 15);  // the straight
   auto deviation = [](const LaneSet& set, const std::vector<Point2>& line) {
     return LaneCentreDeviation(*set.own, LaneFrameAngle(set, Params{}), line);
@@ -276,7 +263,7 @@ TEST(LaneCorridor, ACornerFollowsAShortStraightIntoASharpTurn) {
   const LaneCorridor c = TracedTurnCorridor();
   const Pose2 X_WV = kTracedTurnPose;
   constexpr double kReach = 36.0;
-  const std::vector<Point2> centre = CentreLine(c, X_WV, kReach);
+  const std::vector<Point2> centre = CentreLineAhead(c, X_WV, kReach);
   LaneSampling corners;
   corners.corners = true;
   corners.centre_within_lane = false;
