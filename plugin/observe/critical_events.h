@@ -9,28 +9,37 @@
 //    area against a vehicle whose internal lane sweeps over that corner, for example.
 //  - hard-braking: the ego decelerates harder than its vehicle type's decel (SUMO's normal
 //    maximum; its drivers brake harder only when they must, up to emergencyDecel).
+//  - pass-through: the ego's body and another's overlap neither at the step before nor at this
+//    one, but do in between, with both moved along the straight line from one pose to the next
+//    (heading turned evenly). SUMO checks collisions only at its steps; at 1 s steps two cars
+//    crossing at 13 m/s can pass through each other between two steps unseen (bench/RESULTS.md,
+//    2026-12-05, twelfth stop). A body that moved farther than its speeds allow (a teleport)
+//    is not interpolated.
 // Each overlap is reported once per contact (when a pair starts to overlap), each hard braking
-// once per spell (when it starts).
+// once per spell (when it starts), each pass-through once per step it happens in.
+#include <map>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "criticality/geometry.h"
 #include "plugin/sumo/sumo_reports.h"
 
 namespace criticality::plugin {
 
 struct CriticalEvent {
-  enum class Kind { kOverlap, kHardBraking };
+  enum class Kind { kOverlap, kHardBraking, kPassThrough };
   double time_s{0.0};
   std::string ego;
   Kind kind{Kind::kOverlap};
-  std::string other;  ///< kOverlap: the object overlapped; kHardBraking: ""
-  /** kOverlap: the ego's speed (m/s); kHardBraking: its deceleration (m/s^2, positive). */
+  std::string other;  ///< kOverlap, kPassThrough: the other object; kHardBraking: ""
+  /** kOverlap, kPassThrough: the ego's speed (m/s); kHardBraking: its deceleration (m/s^2,
+   *  positive). */
   double value{0.0};
 };
 
-/** overlap | hard-braking (the critical_events table's `kind`). */
+/** overlap | hard-braking | pass-through (the critical_events table's `kind`). */
 const char* CriticalEventName(CriticalEvent::Kind kind);
 
 /** Margin above a vehicle's decel before its braking counts as hard (SUMO brakes at exactly
@@ -43,7 +52,15 @@ class CriticalEventDetector {
    *  them. Objects with a non-finite position or heading are skipped. */
   std::vector<CriticalEvent> Run(double time_s, const SumoSurroundings& s);
 
+  /** A footprint where SUMO places an object (see critical_events.cc), and its speed. */
+  struct Body {
+    Pose2 centre;
+    double half_length{0.0}, half_width{0.0}, speed_mps{0.0};
+  };
+
  private:
+  double last_time_s_{0.0};
+  std::map<std::string, Body> last_;  ///< every object's body at the last step
   std::set<std::pair<std::string, std::string>> overlapping_;  ///< (ego, other) in contact
   std::set<std::string> braking_;                              ///< egos braking hard
 };

@@ -38,7 +38,8 @@ FROM {{warnings}} w;
 
 -- Each episode with what followed it from its start to the end of its window, the first that
 -- applies: 'collision' (SUMO reported one of its ego, as collider or victim), 'overlap' (its
--- ego's body overlapped another's), 'hard-braking' (its ego braked harder than its normal
+-- ego's body overlapped another's), 'pass-through' (its ego's body and another's passed
+-- through each other between two steps), 'hard-braking' (its ego braked harder than its normal
 -- maximum); NULL: nothing did, a false alarm. Critical events of other kinds do not count.
 CREATE VIEW {{schema}}.warning_outcomes AS
 SELECT w.{{run_key}} AS {{run_key}}, w.ego AS ego, w.start_s AS start_s, w.end_s AS end_s,
@@ -52,6 +53,11 @@ SELECT w.{{run_key}} AS {{run_key}}, w.ego AS ego, w.start_s AS start_s, w.end_s
                       WHERE e.{{run_key}} = w.{{run_key}} AND e.ego = w.ego AND e.kind = 'overlap'
                         AND e.time_s >= w.start_s AND e.time_s <= w.window_end_s)
            THEN 'overlap'
+         WHEN EXISTS (SELECT 1 FROM {{critical_events}} e
+                      WHERE e.{{run_key}} = w.{{run_key}} AND e.ego = w.ego
+                        AND e.kind = 'pass-through'
+                        AND e.time_s >= w.start_s AND e.time_s <= w.window_end_s)
+           THEN 'pass-through'
          WHEN EXISTS (SELECT 1 FROM {{critical_events}} e
                       WHERE e.{{run_key}} = w.{{run_key}} AND e.ego = w.ego
                         AND e.kind = 'hard-braking'

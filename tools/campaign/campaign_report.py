@@ -46,7 +46,7 @@ SUMMARY_HEADERS = {
 
 MEASURE_COLOURS = {"warnings": "#4c72b0", "false alarms": "#dd8452", "ego collisions": "#c44e52"}
 OUTCOME_COLOURS = {"false alarm": "#dd8452", "collision": "#c44e52", "overlap": "#8172b3",
-                   "hard-braking": "#937860", "avoided": "#55a868"}
+                   "pass-through": "#64b5cd", "hard-braking": "#937860", "avoided": "#55a868"}
 
 
 def plural(n, word):

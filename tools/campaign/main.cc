@@ -444,8 +444,8 @@ int CmdReport(const std::vector<std::string>& args) {
   po::options_description o("report options");
   o.add_options()("dir", po::value(&dir), "campaign folder")(
       "grace", po::value(&ro.grace_s)->default_value(ro.grace_s),
-      "seconds after a warning's end within which a collision, overlap or hard braking of its "
-      "ego makes it a true alarm")(
+      "seconds after a warning's end within which a collision, overlap, pass-through or hard "
+      "braking of its ego makes it a true alarm")(
       "horizon", po::value(&ro.default_horizon_s)->default_value(ro.default_horizon_s),
       "reliability diagram: prediction horizon (s) for runs whose plan does not set --horizon")(
       "min-collisions",

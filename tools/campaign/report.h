@@ -12,9 +12,9 @@
 namespace criticality::campaign {
 
 struct ReportOptions {
-  /** A warning episode is a false alarm when no collision, overlap or hard braking of its ego
-   *  follows from its start until `grace_s` after its end (the view warning_outcomes of
-   *  plugin/record/result_views.sql). */
+  /** A warning episode is a false alarm when no collision, overlap, pass-through or hard
+   *  braking of its ego follows from its start until `grace_s` after its end (the view
+   *  warning_outcomes of plugin/record/result_views.sql). */
   double grace_s{1.0};
   /** Reliability diagram: a step counts as followed by a collision when one involving its ego
    *  happens within the run's prediction horizon (--horizon; this when the plan does not set

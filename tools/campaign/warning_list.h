@@ -15,8 +15,9 @@
 namespace criticality::campaign {
 
 /** warnings.csv: run_index, scenario, parameters, ego, vehicle_class, start_s, end_s, peak_p,
- *  edge, object, outcome (false alarm, collision, overlap, hard-braking, avoided: an act=brake
- *  run's warning of an ego that collided in its act=warn twin), warning_id, scene (yes/no).
+ *  edge, object, outcome (false alarm, collision, overlap, pass-through, hard-braking,
+ *  avoided: an act=brake run's warning of an ego that collided in its act=warn twin),
+ *  warning_id, scene (yes/no).
  *  `setting`: each run's grouping parameters; `twin_collided`: per act=brake run, those egos.
  *  Needs the TEMP view warning_outcomes on `db`; empty with a note when it is missing. */
 Table WarningList(SqliteDb& db, const RunMetricsSet& metrics,

@@ -127,11 +127,12 @@ def judged_vehicle_hours(run):
 def judged(run, eps_by_ego):
     """({outcome: number of episodes} (None: false alarms), critical events warned of, unjudged):
     the episodes {ego: [Episode]} judged by the views warning_outcomes (what followed each
-    episode from its start to GRACE_S after its end: "collision", "overlap", "hard-braking",
-    else None) and critical_event_warnings (an episode of the event's ego began at or before it
-    and ended at most GRACE_S before it). An episode still open (end_s None) counts as ending at
-    its start. Unjudged: the false alarms whose window (window_end_s) ends after the run's last
-    time (last_time_s), so that what followed was not recorded; they stay in the count of None."""
+    episode from its start to GRACE_S after its end: "collision", "overlap", "pass-through",
+    "hard-braking", else None) and critical_event_warnings (an episode of the event's ego began
+    at or before it and ended at most GRACE_S before it). An episode still open (end_s None)
+    counts as ending at its start. Unjudged: the false alarms whose window (window_end_s) ends
+    after the run's last time (last_time_s), so that what followed was not recorded; they stay
+    in the count of None."""
     last = last_time_s(run)
     con = result_views.open_run(run, eps_by_ego, GRACE_S)
     try:

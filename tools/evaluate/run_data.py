@@ -23,7 +23,7 @@ class CriticalEvent:
     (the driver's critical_events table, plugin/observe/critical_events.h)."""
     time_s: float
     ego: str
-    kind: str  # overlap | hard-braking
+    kind: str  # overlap | pass-through | hard-braking
     other: str  # overlap: the object; else None
     value: float
 

@@ -118,6 +118,58 @@ TEST(CriticalEvents, HardBrakingIsBeyondTheVehiclesOwnDecelOncePerSpell) {
   EXPECT_EQ(Describe(e.Run(0.1, Around({Vehicle("x", 0, 0, 0, -9.0, 0.0)}))), "");
 }
 
+// Two cars crossing at 20 m/s, 1 s steps: 10 m before the crossing point at one step, 10 m
+// past it at the next; apart at both steps, through each other at 0.5 s. Catches a detector
+// that looks only at the steps, one that interpolates a teleport (a jump farther than the
+// speeds allow), and one that reports a pair that never met (one car still 10 m short).
+TEST(CriticalEvents, BodiesThatPassThroughEachOtherBetweenStepsAreReported) {
+  auto car = [](const std::string& id, double x, double y, double yaw, double speed) {
+    SumoObject o = Vehicle(id, x, y, yaw);
+    o.speed_mps = speed;
+    return o;
+  };
+  CriticalEventDetector d;
+  EXPECT_EQ(Describe(d.Run(0.0, Around({car("ego", -10, 0, 0, 20), car("v", 0, -10, kPi / 2, 20)}))),
+            "");
+  const std::vector<CriticalEvent> through =
+      d.Run(1.0, Around({car("ego", 10, 0, 0, 20), car("v", 0, 10, kPi / 2, 20)}));
+  ASSERT_EQ(Describe(through), "ego:pass-through:v");
+  EXPECT_DOUBLE_EQ(through[0].value, 20.0);
+  // The same motion with the crossing car 20 m behind: it reaches the crossing point only when
+  // the ego is 10 m past it.
+  CriticalEventDetector late;
+  late.Run(0.0, Around({car("ego", -10, 0, 0, 20), car("v", 0, -30, kPi / 2, 20)}));
+  EXPECT_EQ(Describe(late.Run(1.0, Around({car("ego", 10, 0, 0, 20), car("v", 0, -10, kPi / 2, 20)}))),
+            "");
+  // The crossing car at 5 m/s "moving" 20 m in 1 s: a teleport, not interpolated.
+  CriticalEventDetector jump;
+  jump.Run(0.0, Around({car("ego", -10, 0, 0, 20), car("v", 0, -10, kPi / 2, 5)}));
+  EXPECT_EQ(Describe(jump.Run(1.0, Around({car("ego", 10, 0, 0, 20), car("v", 0, 10, kPi / 2, 5)}))),
+            "");
+}
+
+// A car following a 10 m radius left turn, 60 degrees in one 1 s step (10.5 m/s): between
+// the two poses it moves along the arc, which runs 1.34 m outside the chord at its middle. A
+// person standing 0.5 m inside the chord's middle is passed; one on the arc is hit. Catches
+// interpolation along the chord (it would cut the corner into the first person).
+TEST(CriticalEvents, ATurningBodyIsInterpolatedAlongItsArc) {
+  const double v = 10.0 * kPi / 3.0;
+  auto turning = [&](double angle) {  // on the circle about the origin, heading along it
+    SumoObject o = Vehicle("ego", 10.0 * std::sin(angle), -10.0 * std::cos(angle), angle);
+    o.speed_mps = v;
+    return o;
+  };
+  const double chord_x = 0.5 * 10.0 * std::sin(kPi / 3.0), chord_y = -0.5 * (10.0 + 5.0);
+  const SumoObject inside = Person("inside", chord_x - 0.25, chord_y + 0.25 * std::sqrt(3.0));
+  const SumoObject on_arc = Person("on_arc", 10.0 * std::sin(kPi / 6.0), -10.0 * std::cos(kPi / 6.0));
+  CriticalEventDetector d;
+  EXPECT_EQ(Describe(d.Run(0.0, Around({turning(0.0), inside}))), "");
+  EXPECT_EQ(Describe(d.Run(1.0, Around({turning(kPi / 3.0), inside}))), "");
+  CriticalEventDetector e;
+  EXPECT_EQ(Describe(e.Run(0.0, Around({turning(0.0), on_arc}))), "");
+  EXPECT_EQ(Describe(e.Run(1.0, Around({turning(kPi / 3.0), on_arc}))), "ego:pass-through:on_arc");
+}
+
 TEST(CriticalEvents, ObjectsWithoutAPositionAreSkipped) {
   CriticalEventDetector d;
   SumoObject lost = Person("p", NAN, NAN);  // SUMO 1.15 reports some like this

@@ -160,7 +160,11 @@ TEST(ResultViews, CollisionBeatsOverlapBeatsHardBraking) {
   Event(db, 4.5, "a", "overlap");
   Event(db, 4.5, "d", "something-else");
   Collision(db, 4.5, "a", "x");
-  EXPECT_EQ(Outcomes(db), (std::vector<std::string>{"collision", "overlap", "hard-braking", "-"}));
+  Warning(db, "e", 5.0, 6.0);  // a pass-through (after an overlap, before hard braking)
+  Event(db, 5.5, "e", "hard-braking");
+  Event(db, 6.0, "e", "pass-through");
+  EXPECT_EQ(Outcomes(db), (std::vector<std::string>{"collision", "overlap", "hard-braking", "-",
+                                                    "pass-through"}));
 }
 
 TEST(ResultViews, TheWindowRunsFromTheStartToTheEndPlusTheGraceAsTheEvaluationAddsIt) {
@@ -178,7 +182,7 @@ TEST(ResultViews, TheWindowRunsFromTheStartToTheEndPlusTheGraceAsTheEvaluationAd
   db.Exec(ResultViewsSql(keys));
   std::vector<std::optional<std::string>> expected;
   // Each kind on its own, at each boundary: ego "<kind> <where>".
-  for (const std::string kind : {"collision", "hard-braking", "overlap"}) {
+  for (const std::string kind : {"collision", "hard-braking", "overlap", "pass-through"}) {
     for (const auto& [where, t, counts] :
          {std::tuple<std::string, double, bool>{"at end + grace", at_edge, true},
           {"at start", start, true},
