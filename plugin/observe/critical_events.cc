@@ -70,10 +70,11 @@ Body Between(const Body& a, const Body& b, double f) {
   return m;
 }
 
-// Whether the two bodies overlap somewhere between their last poses (a0, b0) and these (a1,
-// b1), both moved evenly (Between): tested at substeps short enough that neither body's
-// corners move much more than 0.1 m relative to the other's between two of them.
-bool PassThrough(const Body& a0, const Body& a1, const Body& b0, const Body& b1) {
+// Whether the two bodies, apart at the last step (a0, b0) and at this one (a1, b1), overlap
+// somewhere in between, both moved evenly (Between) over dt seconds: tested at substeps short
+// enough that neither body's corners move much more than 0.1 m relative to the other's
+// between two of them.
+bool PassThrough(const Body& a0, const Body& a1, const Body& b0, const Body& b1, double dt) {
   constexpr double kSubstepM = 0.1;
   const double ra = std::hypot(a0.half_length, a0.half_width);
   const double rb = std::hypot(b0.half_length, b0.half_width);
@@ -88,6 +89,8 @@ bool PassThrough(const Body& a0, const Body& a1, const Body& b0, const Body& b1)
       0.21 * (std::hypot(a1.centre.x - a0.centre.x, a1.centre.y - a0.centre.y) +
               std::hypot(b1.centre.x - b0.centre.x, b1.centre.y - b0.centre.y));
   if (std::hypot(dx0 + f * ux, dy0 + f * uy) > ra + rb + bulge) return false;
+  // In contact at the last step (an overlap, reported then), or a jump: not a pass-through.
+  if (Overlap(a0, b0) || !Moved(a0, a1, dt) || !Moved(b0, b1, dt)) return false;
   const double move = std::hypot((a1.centre.x - a0.centre.x) - (b1.centre.x - b0.centre.x),
                                  (a1.centre.y - a0.centre.y) - (b1.centre.y - b0.centre.y)) +
                       ra * std::fabs(WrapAngle(a1.centre.yaw - a0.centre.yaw)) +
@@ -118,7 +121,19 @@ std::vector<CriticalEvent> CriticalEventDetector::Run(double time_s, const SumoS
   std::vector<CriticalEvent> out;
   std::set<std::pair<std::string, std::string>> overlapping;
   std::set<std::string> braking;
-  const double dt = last_.empty() ? 0.0 : time_s - last_time_s_;
+  const double dt = time_s - last_time_s_;
+  // Every object's body now and, where it was placed at the last step, then (one look-up per
+  // object, not per pair).
+  const size_t n = s.objects.size();
+  std::vector<Body> now(n);
+  std::vector<char> placed(n);
+  std::vector<const Body*> before(n, nullptr);
+  for (size_t i = 0; i < n; ++i) {
+    now[i] = BodyOf(s.objects[i]);
+    placed[i] = Placed(now[i]);
+    const auto it = last_.find(s.objects[i].id);
+    if (it != last_.end()) before[i] = &it->second;
+  }
   for (const SumoSurroundings::Ego& e : s.egos) {
     const SumoObject& ego = s.objects[e.self];
     const double decel = -ego.accel_mps2;
@@ -128,38 +143,31 @@ std::vector<CriticalEvent> CriticalEventDetector::Run(double time_s, const SumoS
       if (!braking_.count(ego.id))
         out.push_back({time_s, ego.id, CriticalEvent::Kind::kHardBraking, "", decel});
     }
-    const Body body = BodyOf(ego);
-    if (!Placed(body)) continue;
+    if (!placed[e.self]) continue;
+    const Body& body = now[e.self];
+    const double speed = std::isnan(ego.speed_mps) ? ego.speed_mps : std::max(0.0, ego.speed_mps);
     for (int k : e.nearby) {
+      if (k == e.self || !placed[k]) continue;
       const SumoObject& o = s.objects[k];
-      if (k == e.self) continue;
-      const Body other = BodyOf(o);
-      if (!Placed(other)) continue;
+      const Body& other = now[k];
       if (!Overlap(body, other)) {
         // Apart now: did they pass through each other since the last step?
-        const auto e0 = last_.find(ego.id), o0 = last_.find(o.id);
-        if (e0 != last_.end() && o0 != last_.end() && !Overlap(e0->second, o0->second) &&
-            Moved(e0->second, body, dt) && Moved(o0->second, other, dt) &&
-            PassThrough(e0->second, body, o0->second, other)) {
-          out.push_back({time_s, ego.id, CriticalEvent::Kind::kPassThrough, o.id,
-                         std::isnan(ego.speed_mps) ? ego.speed_mps : std::max(0.0, ego.speed_mps)});
-        }
+        const Body *e0 = before[e.self], *o0 = before[k];
+        if (e0 && o0 && PassThrough(*e0, body, *o0, other, dt))
+          out.push_back({time_s, ego.id, CriticalEvent::Kind::kPassThrough, o.id, speed});
         continue;
       }
       std::pair<std::string, std::string> pair{ego.id, o.id};
-      if (!overlapping_.count(pair)) {
-        out.push_back({time_s, ego.id, CriticalEvent::Kind::kOverlap, o.id,
-                       std::isnan(ego.speed_mps) ? ego.speed_mps : std::max(0.0, ego.speed_mps)});
-      }
+      if (!overlapping_.count(pair))
+        out.push_back({time_s, ego.id, CriticalEvent::Kind::kOverlap, o.id, speed});
       overlapping.insert(std::move(pair));
     }
   }
   overlapping_.swap(overlapping);
   braking_.swap(braking);
   last_.clear();
-  for (const SumoObject& o : s.objects) {
-    const Body b = BodyOf(o);
-    if (Placed(b)) last_[o.id] = b;
+  for (size_t i = 0; i < n; ++i) {
+    if (placed[i]) last_.emplace(s.objects[i].id, now[i]);
   }
   last_time_s_ = time_s;
   return out;

@@ -17,9 +17,9 @@
 //    is not interpolated.
 // Each overlap is reported once per contact (when a pair starts to overlap), each hard braking
 // once per spell (when it starts), each pass-through once per step it happens in.
-#include <map>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -60,7 +60,7 @@ class CriticalEventDetector {
 
  private:
   double last_time_s_{0.0};
-  std::map<std::string, Body> last_;  ///< every object's body at the last step
+  std::unordered_map<std::string, Body> last_;  ///< every placed object's body at the last step
   std::set<std::pair<std::string, std::string>> overlapping_;  ///< (ego, other) in contact
   std::set<std::string> braking_;                              ///< egos braking hard
 };
