@@ -84,11 +84,11 @@ bool PassThrough(const Body& a0, const Body& a1, const Body& b0, const Body& b1,
   const double dx0 = b0.centre.x - a0.centre.x, dy0 = b0.centre.y - a0.centre.y;
   const double ux = (b1.centre.x - a1.centre.x) - dx0, uy = (b1.centre.y - a1.centre.y) - dy0;
   const double uu = ux * ux + uy * uy;
-  const double f = uu > 0.0 ? std::clamp(-(dx0 * ux + dy0 * uy) / uu, 0.0, 1.0) : 0.0;
+  const double closest = uu > 0.0 ? std::clamp(-(dx0 * ux + dy0 * uy) / uu, 0.0, 1.0) : 0.0;
   const double bulge =
       0.21 * (std::hypot(a1.centre.x - a0.centre.x, a1.centre.y - a0.centre.y) +
               std::hypot(b1.centre.x - b0.centre.x, b1.centre.y - b0.centre.y));
-  if (std::hypot(dx0 + f * ux, dy0 + f * uy) > ra + rb + bulge) return false;
+  if (std::hypot(dx0 + closest * ux, dy0 + closest * uy) > ra + rb + bulge) return false;
   // In contact at the last step (an overlap, reported then), or a jump: not a pass-through.
   if (Overlap(a0, b0) || !Moved(a0, a1, dt) || !Moved(b0, b1, dt)) return false;
   const double move = std::hypot((a1.centre.x - a0.centre.x) - (b1.centre.x - b0.centre.x),
