@@ -155,6 +155,12 @@ void OptionTable::Estimator(DriverOptions* o) {
       "ablation (ours): take SUMO's angle also just after a lane change past a junction, where "
       "it points from the body's back, still on the old lane, to its front in the new one (by "
       "default the heading of the way behind the new lane: plugin/README.md, \"Headings\")")(
+      "no-lane-heading-yaw-rate", po::bool_switch(&raw.no_lane_heading_yaw_rate),
+      "ablation (ours): at steps up to 0.25 s take every vehicle's yaw rate from its last "
+      "step's heading change (0 or a spike along a junction's lane of straight pieces); by "
+      "default a vehicle whose heading is SUMO's along its lanes (from its back to its front "
+      "on them) turns as that heading turns around its front at its speed (plugin/README.md, "
+      "\"Yaw rate\")")(
       "no-junction-shapes", po::bool_switch(&raw.no_junction_shapes),
       "ablation (ours): draw the lanes ahead through a junction as the straight chord from the "
       "lane's end to the next lane's start (by default along the junction's internal lanes, "

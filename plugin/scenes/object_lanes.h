@@ -17,6 +17,7 @@
 #include "criticality/scene.h"
 #include "plugin/network/counter_lanes.h"
 #include "plugin/network/road_network.h"
+#include "plugin/scenes/lane_heading.h"
 #include "plugin/scenes/scene_config.h"
 
 namespace criticality::plugin {
@@ -60,7 +61,15 @@ struct ObjectLanes {
    *  few straight pieces, and a vehicle's heading jumps at their corners; this yaw rate
    *  averages over the corners around it. */
   double smooth_lane_yaw_rate_radps{0.0};
+  /** With SceneConfig::lane_heading_yaw_rate at steps up to kLongStepS: SUMO's heading along
+   *  the lanes (HeadingAlong, over kLaneHeadingWindowS of its speed each way of its front, at
+   *  least 1 m); nullopt otherwise or where the way behind is not known. */
+  std::optional<LaneHeading> lane_heading;
 };
+
+/** See ObjectLanes::lane_heading: the heading's change over the half second around now (a
+ *  window only ahead, the turn the front is entering, was tried: bench/RESULTS.md). */
+inline constexpr double kLaneHeadingWindowS = 0.25;
 
 /** Extends the corridor's centre line (starting with the vehicle's lane) along its way
  *  (NextLaneOf; with junction_shapes through a junction along its internal lanes), as far as

@@ -252,7 +252,7 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   const ObjectLanes lanes = LanesOf(v, config_, step_s_, network_, &counter_lanes_);
   s.lanes = lanes.lanes;
   s.state.route_end_m = lanes.route_end_m;
-  if (step_s_ > kLongStepS) s.state.yaw_rate_radps = lanes.lane_yaw_rate_radps;
+  s.state.yaw_rate_radps = LaneYawRateOr(s.state.yaw_rate_radps, lanes, heading, held);
   s.stop_line = StopLineOf(v, o.id, config_, network_, traffic_);
   // Its leader and its stop line are read: the reasons to brake this scene knows
   // (Params::release_unexplained_braking), unless it may be yielding ahead.
@@ -311,6 +311,16 @@ bool ObjectReader::ChangedLanesSinceTheJunction(const SumoObject& o) {
     it = reached_from_.emplace(key, reached).first;
   }
   return !it->second;
+}
+
+double ObjectReader::LaneYawRateOr(double measured, const ObjectLanes& lanes, double heading,
+                                   bool held) const {
+  if (step_s_ > kLongStepS) return lanes.lane_yaw_rate_radps;
+  // SceneConfig::lane_heading_yaw_rate: SUMO's heading along its lanes, where it is that.
+  if (lanes.lane_heading && !held &&
+      std::fabs(WrapAngle(heading - lanes.lane_heading->yaw_rad)) < kFollowsLaneToleranceRad)
+    return lanes.lane_heading->yaw_rate_radps;
+  return measured;
 }
 
 double ObjectReader::GripYawRate(double speed_mps) const {

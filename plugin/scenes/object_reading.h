@@ -20,6 +20,7 @@
 #include "plugin/network/counter_lanes.h"
 #include "plugin/network/road_network.h"
 #include "plugin/network/traffic_view.h"
+#include "plugin/scenes/object_lanes.h"
 #include "plugin/scenes/object_snapshot.h"
 #include "plugin/scenes/scene_config.h"
 #include "plugin/sumo/sumo_reports.h"
@@ -53,6 +54,11 @@ class ObjectReader {
   bool ChangedLanesSinceTheJunction(const SumoObject& o);
   /** The largest yaw rate a vehicle at this speed can turn at within grip: v r <= mu g. */
   double GripYawRate(double speed_mps) const;
+  /** The yaw rate a vehicle is read with, `measured` its heading change since the last step:
+   *  with steps longer than kLongStepS its lane's; with shorter ones, where it follows its
+   *  lanes (its `heading` SUMO's along them, not `held`), the turn of that heading
+   *  (SceneConfig::lane_heading_yaw_rate); else `measured`. */
+  double LaneYawRateOr(double measured, const ObjectLanes& lanes, double heading, bool held) const;
   /** Plausible states: a yaw rate within grip (the lane's where SUMO's heading jumped), an
    *  acceleration within the type's limits; counted unless `counted` (the read's heading was
    *  held and counted already). */

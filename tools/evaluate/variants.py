@@ -82,6 +82,10 @@ VARIANTS = [
             "experiment (ours): lanes that turn are sent as corners: straight, a parabola "
             "tangent to both straights, straight (--lane-corners)",
             {"act": "warn", "lane-corners": "true"}),
+    Variant("no-lane-heading-yaw-rate",
+            "ours taking every vehicle's yaw rate at short steps from its last step's heading "
+            "change (--no-lane-heading-yaw-rate)",
+            {"act": "warn", "no-lane-heading-yaw-rate": "true"}),
     Variant("no-junction-shapes",
             "ours drawing the lanes ahead through a junction as the chord between the lanes, "
             "not along its internal lanes (--no-junction-shapes)",

@@ -112,6 +112,17 @@ TEST(DriverOptions, ScenarioMetadata) {
                std::invalid_argument);
 }
 
+TEST(DriverOptions, LaneHeadingYawRateIsOnUnlessSwitchedOff) {
+  const auto parse = [](std::vector<const char*> extra) {
+    std::vector<const char*> args = {"--connect", "h:1", "--ego", "e", "--output", "x"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return Parse(args).options.scenes;
+  };
+  const SceneConfig plain = parse({});
+  EXPECT_TRUE(plain.lane_heading_yaw_rate);
+  EXPECT_FALSE(parse({"--no-lane-heading-yaw-rate"}).lane_heading_yaw_rate);
+}
+
 TEST(DriverOptions, ThreadsBesideSumo) {
   // Pipelined (--act warn, the default loop), named egos: --threads 0 leaves SUMO a core and
   // the estimator's helpers do not spin; a fleet keeps every core; --act brake (SUMO and the

@@ -566,6 +566,46 @@ TEST(SceneStage, AfterALaneChangeJustPastAJunctionTheHeadingIsTheWayOfItsNewLane
   EXPECT_NEAR(HeadingPastTheTurn(gradual, "E_1", 1.0, 90.0 - sumo), sumo, 1e-9);
 }
 
+// A right turn whose internal lane is two straight pieces: north from (0, 0) to (0, 10), then
+// east to (10, 10). A 5 m car at 6 m/s, its front 9.0 m and then, 0.1 s later, 9.6 m into the
+// turn: both ends on the first piece, so SUMO's angle (back to front) is north at both reads.
+// The yaw rate it is read with at the second read.
+double YawRateEnteringACorner(const SceneConfig& config, double angle_deg) {
+  FakeSumoWorld w(0.1);
+  w.AddEdge("N", 0, -100, 0, 0, 1);
+  w.AddLaneShape(":J_0", {Point2{0, 0}, Point2{0, 10}, Point2{10, 10}});
+  w.AddEdge("E", 10, 10, 110, 10, 1);
+  w.AddLinkVia("N_0", "E_0", ":J_0_0", "r");
+  w.AddLink(":J_0_0", "E_0");
+  w.AddVehicle("car", 0, 9.0, angle_deg, 6.0, ":J_0_0", 9.0, {"N", "E"});
+  SceneStage stage(config, w.StepLength(), true, &w, &w);
+  stage.Run(Observe(w, {"car"}));
+  w.Step();
+  SumoObject& car = *w.Find("car");
+  car.x_m = 0.0;
+  car.y_m = 9.6;
+  car.lane_position_m = 9.6;
+  car.angle_deg = angle_deg;
+  return stage.Run(Observe(w, {"car"})).scenes.at(0).ego.state.yaw_rate_radps;
+}
+
+TEST(SceneStage, AtShortStepsAVehicleFollowingItsLanesTurnsAsItsHeadingAlongThemTurns) {
+  // Its heading did not change since the last step, but 1.5 m on (a quarter second at 6 m/s)
+  // its front has rounded the corner: from (0, 6.1) to (1.1, 10) the chord points right of
+  // north, while 1.5 m back it pointed north.
+  SceneConfig config;
+  const double r = YawRateEnteringACorner(config, 0.0);
+  const double turned = std::atan2(1.1, 3.9);  // radians, clockwise, over 3 m
+  EXPECT_NEAR(r, -6.0 * turned / 3.0, 1e-9);
+  EXPECT_LT(r, -0.5);
+  // --no-lane-heading-yaw-rate takes the last step's change: none.
+  config.lane_heading_yaw_rate = false;
+  EXPECT_NEAR(YawRateEnteringACorner(config, 0.0), 0.0, 1e-12);
+  // A heading off its lanes' (5 degrees: a sublane change) keeps the last step's change.
+  config.lane_heading_yaw_rate = true;
+  EXPECT_NEAR(YawRateEnteringACorner(config, 5.0), 0.0, 1e-12);
+}
+
 TEST(SceneStage, ATeleportForgetsTheHeadingThatWouldBeHeld) {
   // 32 degrees in 0.1 s: held without the teleport (the test above), taken after it.
   EXPECT_NEAR(HeadingsRead(SceneConfig{}, {58}, /*teleported_at=*/0)[0], 32.0, 1e-9);
