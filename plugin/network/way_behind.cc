@@ -123,6 +123,14 @@ WayLine LineBehind(RoadNetwork& network, const std::string& lane, double lane_po
   return way;
 }
 
+std::optional<double> ChordYaw(const WayLine& way, double length_m, double ahead_m) {
+  const std::optional<Point2> back = PointOnWay(way, length_m - ahead_m);
+  const std::optional<Point2> front = PointOnWay(way, -ahead_m);
+  if (!back || !front || std::hypot(front->x - back->x, front->y - back->y) < 1e-6)
+    return std::nullopt;
+  return std::atan2(front->y - back->y, front->x - back->x);
+}
+
 std::optional<Point2> PointOnWay(const WayLine& way, double metres) {
   const double s = way.front_m - metres;
   if (s < -1e-9 || way.line.size() < 2) return std::nullopt;

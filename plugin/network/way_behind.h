@@ -41,7 +41,13 @@ struct WayLine {
 WayLine LineBehind(RoadNetwork& network, const std::string& lane, double lane_position_m,
                    double metres, const std::vector<std::string>& route, int route_index);
 
-/** The point `metres` behind the front along `way`; nullopt beyond its known start. */
+/** The point `metres` behind the front along `way` (ahead where negative, extrapolated past
+ *  its end); nullopt beyond its known start. */
 std::optional<Point2> PointOnWay(const WayLine& way, double metres);
+
+/** SUMO's heading of a body `length_m` long along `way` (MSVehicle::computeAngle: from its back
+ *  to its front, both on the way), its front `ahead_m` ahead of the way's front (behind where
+ *  negative); nullopt where the way is not known that far back (or the two points meet). */
+std::optional<double> ChordYaw(const WayLine& way, double length_m, double ahead_m = 0.0);
 
 }  // namespace criticality::plugin

@@ -13,6 +13,7 @@
 
 #include "criticality/scene.h"
 #include "plugin/network/road_network.h"
+#include "plugin/network/way_behind.h"
 
 namespace criticality::plugin {
 
@@ -21,21 +22,19 @@ struct LaneHeading {
   double yaw_rate_radps{0.0};  ///< its change along the lanes around the front, at the speed
 };
 
-/** The heading of a body `length_m` long whose front is at `front_m` along `line` (a centre
- *  line through the lanes behind it and ahead of it), and its rate of change at `speed_mps`
- *  from up to `behind_m` behind the front to up to `ahead_m` ahead of it (less where `line`
- *  ends, at least 0.5 m in all). nullopt where the line does not reach the back or is too
- *  short. */
-std::optional<LaneHeading> HeadingAlong(const std::vector<Point2>& line, double front_m,
-                                        double length_m, double speed_mps, double behind_m,
-                                        double ahead_m);
+/** The heading of a body `length_m` long whose front is `way`'s front (`way` a centre line
+ *  through the lanes behind it and ahead of it: ChordYaw), and its rate of change at
+ *  `speed_mps` from up to `behind_m` behind the front to up to `ahead_m` ahead of it (less
+ *  where the line ends, at least 0.5 m in all). nullopt where the line does not reach the back
+ *  or is too short. */
+std::optional<LaneHeading> HeadingAlong(const WayLine& way, double length_m, double speed_mps,
+                                        double behind_m, double ahead_m);
 
-/** The centre line a vehicle's body and its way ahead lie along: the lanes behind its front
+/** The way a vehicle's body and its way ahead lie along: the lanes behind its front
  *  (LineBehind, `behind_m` of them) joined with `ahead`, a centre line that starts with the
- *  shape of `lane` (a LaneCorridor's). *front_m is the front's arc length on it. */
-std::vector<Point2> LineThrough(RoadNetwork& network, const std::string& lane,
-                                double lane_position_m, double behind_m,
-                                const std::vector<std::string>& route, int route_index,
-                                const std::vector<Point2>& ahead, double* front_m);
+ *  shape of `lane` (a LaneCorridor's). */
+WayLine LineThrough(RoadNetwork& network, const std::string& lane, double lane_position_m,
+                    double behind_m, const std::vector<std::string>& route, int route_index,
+                    const std::vector<Point2>& ahead);
 
 }  // namespace criticality::plugin

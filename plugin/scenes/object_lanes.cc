@@ -90,11 +90,9 @@ ObjectLanes LanesOf(const VehicleOnLane& v, const SceneConfig& config, double st
       LaneYawRate(c, v.speed_mps, std::fmax(kCornerWindowM, 0.5 * v.speed_mps * step_s));
   if (config.lane_heading_yaw_rate && step_s <= kLongStepS) {
     const double window = std::fmax(1.0, kLaneHeadingWindowS * v.speed_mps);
-    double front = 0.0;
-    const std::vector<Point2> line =
-        LineThrough(*network, v.lane, v.lane_position_m, v.length_m + window + 1.0, v.route,
-                    v.route_index, c.centre, &front);
-    out.lane_heading = HeadingAlong(line, front, v.length_m, v.speed_mps, window, window);
+    const WayLine way = LineThrough(*network, v.lane, v.lane_position_m,
+                                    v.length_m + window + 1.0, v.route, v.route_index, c.centre);
+    out.lane_heading = HeadingAlong(way, v.length_m, v.speed_mps, window, window);
   }
   const std::string reference = IsInternal(v.lane) ? beyond_junction : v.lane;
   if (!reference.empty()) Neighbours(v, reference, network, counter_lanes, &c);

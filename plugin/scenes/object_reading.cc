@@ -47,16 +47,6 @@ double ChordOf(const WayLine& way, double metres) {
 // The centre pose of a body's first box, `length_m` long, with boxes behind it: along its own
 // part of `way` (SUMO's angle points along the whole body), its front SUMO's front bumper;
 // along SUMO's angle where the way is not known that far.
-// The direction from the point `length_m` behind the front along `way` to the front; nullopt
-// where the way is not known that far back (or the two points meet).
-std::optional<double> ChordYaw(const WayLine& way, double length_m) {
-  const std::optional<Point2> back = PointOnWay(way, length_m);
-  const std::optional<Point2> front = PointOnWay(way, 0.0);
-  if (!back || !front || std::hypot(front->x - back->x, front->y - back->y) < 1e-6)
-    return std::nullopt;
-  return std::atan2(front->y - back->y, front->x - back->x);
-}
-
 Pose2 HeadPose(const SumoObject& o, const WayLine& way, double length_m) {
   const std::optional<double> chord = ChordYaw(way, length_m);
   if (!chord) return FrontBumperToCentre(o.x_m, o.y_m, o.angle_deg, length_m);
