@@ -309,18 +309,22 @@ std::vector<Scene> ReadFleet(const std::string& dir) {
 
 int Fleet(const Params& params, const Options& opt) {
   const std::vector<Scene> scenes = ReadFleet(opt.fleet);
-  std::vector<std::string> names{"cpu"};
+  // cpu-unshared: each scene simulates its own other road users (no ObjectPathsCache), the
+  // cost the batch's sharing saves; it must agree with cpu exactly.
+  std::vector<std::string> names{"cpu", "cpu-unshared"};
   if (CudaUsable(nullptr)) names.push_back("cuda");
   std::printf("fleet %s: %zu egos in one batch, %d profiles\n", opt.fleet.c_str(), scenes.size(),
               opt.profiles);
-  std::printf("%-6s %7s %12s %12s %12s %14s  %s\n", "backend", "threads", "median ms", "min ms",
+  std::printf("%-12s %7s %12s %12s %12s %14s  %s\n", "backend", "threads", "median ms", "min ms",
               "egos/s", "x cpu", "agreement with cpu");
   std::vector<Result> cpu_results;
   double cpu_median = 0.0;
   std::string json = "{\"fleet\":\"" + JsonEscape(opt.fleet) + "\",\"egos\":" +
                      std::to_string(scenes.size()) + ",\"backends\":[";
   for (size_t k = 0; k < names.size(); ++k) {
-    EstimatorOptions eopt = BackendOptions(opt, names[k]);
+    const bool unshared = names[k] == "cpu-unshared";
+    EstimatorOptions eopt = BackendOptions(opt, unshared ? "cpu" : names[k]);
+    if (unshared) eopt.shared_object_paths_mib = 0;
     Estimator estimator(params, eopt);
     for (int w = 0; w < opt.warmup; ++w) estimator.EstimateBatch(scenes);
     std::vector<double> ms;
@@ -349,7 +353,7 @@ int Fleet(const Params& params, const Options& opt) {
     char agree[160];
     std::snprintf(agree, sizeof agree, "max |dp_cra| = %.1e, %zu of %zu scenes beyond 1e-6",
                   max_dp, beyond, results.size());
-    std::printf("%-6s %7d %12.3f %12.3f %12.1f %14.2f  %s\n", names[k].c_str(),
+    std::printf("%-12s %7d %12.3f %12.3f %12.1f %14.2f  %s\n", names[k].c_str(),
                 estimator.threads(), median, min, egos_per_s, cpu_median / median, agree);
     double street = 0.0, traj = 0.0, coll = 0.0, risk = 0.0;  // the last batch's, over its egos
     for (const Result& r : results) {

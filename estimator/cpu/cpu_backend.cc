@@ -4,10 +4,13 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
+#include <string>
 
 #include "core/oriented_box.h"
 #include "core/trajectory_generation.h"
 #include "cpu/block_contact.h"
+#include "cpu/object_paths_cache.h"
 #include "cpu/sibling_steps.h"
 #include "src/parallel_for.h"
 #include "src/reach_filter.h"
@@ -139,15 +142,47 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
 
   // Collision objects first (their swept circles decide which ego subtrees are out of reach):
   // no shared prefixes (each keeps one lateral sample throughout); the paths of one (set,
-  // profile) in SIMD lanes where they apply, else one by one.
-  std::vector<std::pair<int, int>> co_tasks;  // (set, profile)
-  for (size_t o = 0; o < pb.cos.size(); ++o)
+  // profile) in SIMD lanes where they apply, else one by one. A set that another scene of the
+  // batch simulated already (ObjectPathsCache) is copied from there instead: the same poses
+  // and cos/sin, bit for bit.
+  using CachedPaths = std::shared_ptr<const internal::ObjectPathsCache::Paths>;
+  std::vector<std::string> keys(paths_cache_ ? pb.cos.size() : 0);
+  std::vector<CachedPaths> cached(pb.cos.size());
+  for (size_t o = 0; o < keys.size(); ++o) {
+    keys[o] = internal::ObjectPathsCache::KeyOf(pb.cos[o], pb.sim, simd_ ? 1 : 0);
+    cached[o] = paths_cache_->Find(keys[o]);
+  }
+  // The trajectories [first, first + count) of set o in the store and its cos/sin.
+  auto set_range = [&](size_t o) {
+    return std::make_pair(co_.Offset(pb.co_offset[o]),
+                          static_cast<size_t>(pb.cos[o].Trajectories()) * steps);
+  };
+  std::vector<std::pair<int, int>> co_tasks;  // (set, profile), profile -1: copy the set
+  for (size_t o = 0; o < pb.cos.size(); ++o) {
+    if (cached[o]) {
+      co_tasks.emplace_back(static_cast<int>(o), -1);
+      continue;
+    }
     for (int profile = 0; profile < pb.cos[o].n_profiles; ++profile)
       co_tasks.emplace_back(static_cast<int>(o), profile);
+  }
   internal::ParallelFor(static_cast<int>(co_tasks.size()), threads_, [&](int begin, int end) {
     for (int task = begin; task < end; ++task) {
       const auto [o, profile] = co_tasks[task];
       const core::HypothesisSet& h = pb.cos[o];
+      if (profile < 0) {
+        const internal::ObjectPathsCache::Paths& p = *cached[o];
+        const auto [at, n] = set_range(o);
+        std::copy_n(p.x.data(), n, &co_.x[at]);
+        std::copy_n(p.y.data(), n, &co_.y[at]);
+        std::copy_n(p.yaw.data(), n, &co_.yaw[at]);
+        std::copy_n(p.c.data(), n, &co_cos_[at]);
+        std::copy_n(p.s.data(), n, &co_sin_[at]);
+        for (int t = 0; t < h.Trajectories(); ++t)
+          FinishSpan(co_, &co_cos_, &co_sin_, &co_bounds_, pb.co_offset[o] + t, 0, steps, 0, blocks,
+                     true);
+        continue;
+      }
       const int j0 = pb.co_offset[o] + profile * h.n_paths;
       const bool co_lanes = simd_ && internal::SiblingStepsApply(h, pb.sim);
       if (co_lanes) {
@@ -164,6 +199,18 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
         FinishSpan(co_, &co_cos_, &co_sin_, &co_bounds_, j0 + path, 0, steps, 0, blocks, co_lanes);
     }
   });
+  for (size_t o = 0; o < keys.size(); ++o) {
+    if (cached[o]) continue;
+    auto p = std::make_shared<internal::ObjectPathsCache::Paths>();
+    const auto [at, n] = set_range(o);
+    p->steps = steps;
+    p->x.assign(&co_.x[at], &co_.x[at] + n);
+    p->y.assign(&co_.y[at], &co_.y[at] + n);
+    p->yaw.assign(&co_.yaw[at], &co_.yaw[at] + n);
+    p->c.assign(&co_cos_[at], &co_cos_[at] + n);
+    p->s.assign(&co_sin_[at], &co_sin_[at] + n);
+    paths_cache_->Store(std::move(keys[o]), std::move(p));
+  }
   // Each object's circle over each block, around all its trajectories' poses.
   const int n_sets = static_cast<int>(pb.cos.size());
   object_blocks_.c.resize(static_cast<size_t>(n_sets) * blocks);

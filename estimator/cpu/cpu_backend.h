@@ -34,6 +34,8 @@
 //    horizon: an ego waiting at a standstill under a braking profile) are checked once along the
 //    node's first path from its span to the horizon, for all the paths below, and siblings that
 //    hold the same pose reuse those first hits: the same tests on the same poses.
+//  - Other road users that another scene of the batch simulated already are copied from the
+//    batch's ObjectPathsCache (cpu/object_paths_cache.h), bit for bit what simulating them gives.
 //  - cos/sin of every pose computed once; threads over each level's packs of nodes and over the
 //    collision tasks.
 //  - With simd (the default), the nodes of one profile and level, and another vehicle's paths
@@ -56,6 +58,7 @@ class CpuBackend final : public EstimatorBackend {
   void RecognizeCollisions(const internal::Problem& problem,
                            std::vector<std::int16_t>* first_step) override;
   int Threads() const override { return threads_; }
+  void ShareObjectPaths(internal::ObjectPathsCache* cache) override { paths_cache_ = cache; }
   /** Every ego path's poses (NaN in skipped subtrees): the shared prefixes are copied to each
    *  path of a node's group on the first call after GenerateTrajectories. */
   const internal::TrajectoryStore& EgoTrajectories() const override;
@@ -98,6 +101,7 @@ class CpuBackend final : public EstimatorBackend {
 
   int threads_;
   bool simd_;
+  internal::ObjectPathsCache* paths_cache_{nullptr};  // not owned; null: none
   bool skip_out_of_reach_;
   int skipped_nodes_{0}, checked_nodes_{0};
   // Per (profile, tree node): 1 when out of reach (not simulated, not checked).

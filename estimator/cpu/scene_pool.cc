@@ -7,8 +7,13 @@ namespace criticality {
 ScenePool::ScenePool(const Params& params, const EstimatorOptions& options, int workers) {
   EstimatorOptions one = options;
   one.threads = 1;
+  if (options.shared_object_paths_mib > 0) {
+    paths_cache_ = std::make_unique<internal::ObjectPathsCache>(
+        static_cast<size_t>(options.shared_object_paths_mib) << 20);
+  }
   for (int k = 0; k < std::max(1, workers); ++k) {
     estimators_.push_back(std::make_unique<Estimator>(params, one));
+    estimators_.back()->SharePaths(paths_cache_.get());
   }
   try {
     for (int k = 1; k < workers; ++k) threads_.emplace_back([this, k] { Work(k); });
@@ -80,6 +85,14 @@ void ScenePool::Work(int worker) {
 }
 
 std::vector<Result> ScenePool::EstimateBatch(const std::vector<Scene>& scenes) {
+  // What the batch's scenes shared is forgotten after it (also when a scene throws): memory
+  // holds one batch at most.
+  struct ClearAfter {
+    internal::ObjectPathsCache* cache;
+    ~ClearAfter() {
+      if (cache) cache->Clear();
+    }
+  } clear_after{paths_cache_.get()};
   std::vector<Result> results(scenes.size());
   if (scenes.size() <= 1 || threads_.empty()) {
     // Nothing to spread: worker 0's estimator on the caller's thread.

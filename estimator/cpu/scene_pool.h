@@ -7,7 +7,9 @@
 // (bench/RESULTS.md, "Driver": 2 threads on one estimate were slower than 1 on busy cores).
 // The threads start with the pool and wait between batches: no thread start-up per batch.
 // Every estimate runs whole on one worker and is deterministic, so results do not depend on
-// the split: results[k] is Estimate(scenes[k]) bit for bit, but for Result::times.
+// the split: results[k] is Estimate(scenes[k]) bit for bit, but for Result::times. The workers
+// share one ObjectPathsCache: another road user that several scenes of the batch see is
+// simulated once (whichever worker comes first; the copies are bit for bit the same).
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -16,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "cpu/object_paths_cache.h"
 #include "criticality/estimator.h"
 
 namespace criticality {
@@ -49,6 +52,9 @@ class ScenePool {
   void RunChunks(int worker);
   void Stop();
 
+  /** Other road users' paths the workers' scenes share within a batch (null: off); declared
+   *  before the estimators, whose backends point to it, so that it outlives them. */
+  std::unique_ptr<internal::ObjectPathsCache> paths_cache_;
   std::vector<std::unique_ptr<Estimator>> estimators_;  ///< one per worker, single-threaded
   std::vector<std::thread> threads_;                    ///< workers 1..n-1
   std::mutex mutex_;

@@ -13,6 +13,9 @@
 #include "src/trajectory_store.h"
 
 namespace criticality {
+namespace internal {
+class ObjectPathsCache;
+}
 
 class EstimatorBackend {
  public:
@@ -23,6 +26,10 @@ class EstimatorBackend {
   virtual void RecognizeCollisions(const internal::Problem& problem,
                                    std::vector<std::int16_t>* first_step) = 0;
   virtual int Threads() const = 0;
+  /** Lets the backend take other road users' paths that another scene of the batch simulated
+   *  from `cache`, and store its own there (null: none). Default: not used (the reference and
+   *  the CUDA backend simulate every scene's). */
+  virtual void ShareObjectPaths(internal::ObjectPathsCache* /*cache*/) {}
   /** The last generated trajectories (for tests and tools). */
   virtual const internal::TrajectoryStore& EgoTrajectories() const = 0;
   virtual const internal::TrajectoryStore& CoTrajectories() const = 0;

@@ -5,13 +5,13 @@
 #include <exception>
 
 #include "cpu/cpu_backend.h"
+#include "cpu/object_paths_cache.h"
 #include "cpu/reference_backend.h"
 #include "cpu/scene_pool.h"
 #include "criticality/errors.h"
 #include "src/backend.h"
 #include "src/parallel_for.h"
 #include "src/problem.h"
-#include "src/street_data.h"
 #include "src/reach_filter.h"
 #include "src/risk_assessment.h"
 #include "src/street_data.h"
@@ -38,8 +38,9 @@ struct ReachShortcut {
   bool any{false};
   bool none_left{false};
 
-  internal::Problem Apply(const internal::Problem& pb, bool simd) {
-    drop = internal::OutOfReach(pb, simd);
+  internal::Problem Apply(const internal::Problem& pb, bool simd,
+                          internal::ObjectPathsCache* cache) {
+    drop = internal::OutOfReach(pb, simd, cache);
     for (char d : drop) any = any || d;
     internal::Problem kept = any ? internal::WithoutObjects(pb, drop) : pb;
     none_left = kept.cos.empty();
@@ -183,6 +184,11 @@ Estimator::Estimator(const Params& params, const EstimatorOptions& options)
     throw InputError("options.threads = " + std::to_string(options_.threads) +
                      ": must be >= 0 (0 = all hardware threads)");
   }
+  if (options_.shared_object_paths_mib < 0) {
+    throw InputError(
+        "options.shared_object_paths_mib = " + std::to_string(options_.shared_object_paths_mib) +
+        ": must be >= 0 (0 = every scene of a batch simulates its own objects)");
+  }
   std::string why;
   if (options_.backend == Backend::kAuto) {
     if (CudaUsable(&why)) {
@@ -200,6 +206,10 @@ Estimator::Estimator(const Params& params, const EstimatorOptions& options)
     case Backend::kAuto:
       backend_ =
           std::make_unique<CpuBackend>(options_.threads, options_.simd, options_.skip_out_of_reach);
+      if (options_.shared_object_paths_mib > 0) {
+        paths_cache_ = std::make_unique<internal::ObjectPathsCache>(
+            static_cast<size_t>(options_.shared_object_paths_mib) << 20);
+      }
       break;
     case Backend::kCuda:
       if (!CudaUsable(&why)) {
@@ -216,13 +226,18 @@ Estimator::~Estimator() = default;
 
 int Estimator::threads() const { return backend_->Threads(); }
 
+void Estimator::SharePaths(internal::ObjectPathsCache* cache) {
+  batch_paths_ = cache;
+  backend_->ShareObjectPaths(cache);
+}
+
 Result Estimator::Estimate(const Scene& scene) {
   const auto t0 = std::chrono::steady_clock::now();
   Result result;
   const internal::Problem built = internal::BuildProblem(scene, params_);
   ReachShortcut shortcut;
   const internal::Problem problem =
-      options_.reach_shortcut ? shortcut.Apply(built, options_.simd) : built;
+      options_.reach_shortcut ? shortcut.Apply(built, options_.simd, batch_paths_) : built;
   result.times.street_ms = MsSince(t0);
 
   if (shortcut.none_left) {
@@ -247,6 +262,18 @@ std::vector<Result> Estimator::EstimateBatch(const std::vector<Scene>& scenes) {
     return pool_->EstimateBatch(scenes);
   }
   const auto t0 = std::chrono::steady_clock::now();
+  // The batch's scenes share their other road users' paths, in the reach shortcut and in the
+  // backend; forgotten after the batch (also when a scene throws): memory holds one batch.
+  struct Sharing {
+    Estimator* estimator;
+    internal::ObjectPathsCache* cache;
+    ~Sharing() {
+      if (!cache) return;
+      estimator->SharePaths(nullptr);
+      cache->Clear();
+    }
+  } sharing{this, scenes.size() > 1 ? paths_cache_.get() : nullptr};
+  if (sharing.cache) SharePaths(sharing.cache);
   std::vector<internal::Problem> built, problems;
   std::vector<ReachShortcut> shortcuts(scenes.size());
   // Each problem into its own slot: for a device batch on the host's threads (the device waits
@@ -260,7 +287,9 @@ std::vector<Result> Estimator::EstimateBatch(const std::vector<Scene>& scenes) {
   internal::ParallelForDynamic(static_cast<int>(scenes.size()), threads, [&](int k) {
     try {
       built[k] = internal::BuildProblem(scenes[k], params_);
-      problems[k] = options_.reach_shortcut ? shortcuts[k].Apply(built[k], options_.simd) : built[k];
+      problems[k] = options_.reach_shortcut
+                        ? shortcuts[k].Apply(built[k], options_.simd, batch_paths_)
+                        : built[k];
     } catch (...) {
       errors[k] = std::current_exception();
     }

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <string>
 
 #include "core/oriented_box.h"
 #include "core/trajectory_generation.h"
 #include "core/vehicle_params.h"
+#include "cpu/object_paths_cache.h"
 #include "cpu/sibling_steps.h"
 
 namespace criticality::internal {
@@ -89,7 +92,7 @@ double EgoReachAfter(const core::HypothesisSet& ego, const core::SimulationConfi
   return t.stretch * travel + t.dv_max * m * ego.position_lead + t.turned + t.chord;
 }
 
-std::vector<char> OutOfReach(const Problem& pb, bool simd) {
+std::vector<char> OutOfReach(const Problem& pb, bool simd, ObjectPathsCache* cache) {
   const std::vector<double> bound = EgoReachBound(pb.ego, pb.sim);
   const double ego_r = core::BoundingRadius(pb.ego.half_length, pb.ego.half_width);
   const double x0 = pb.ego.X_WL.x, y0 = pb.ego.X_WL.y;
@@ -109,6 +112,21 @@ std::vector<char> OutOfReach(const Problem& pb, bool simd) {
       }
       return false;
     };
+    if (simd && cache && SiblingStepsApply(h, pb.sim)) {
+      // Another scene of the batch may have stored the set's paths; else they are simulated
+      // whole and stored, for the backend and the other scenes to copy.
+      std::string key = ObjectPathsCache::KeyOf(h, pb.sim, 1);
+      std::shared_ptr<const ObjectPathsCache::Paths> paths = cache->Find(key);
+      if (!paths) {
+        paths = SimulateLanePaths(h, pb.sim);
+        cache->Store(std::move(key), paths);
+      }
+      for (int t = 0; t < h.Trajectories(); ++t) {
+        const size_t at = static_cast<size_t>(t) * steps;
+        if (near(&paths->x[at], &paths->y[at])) return true;
+      }
+      return false;
+    }
     if (simd && SiblingStepsApply(h, pb.sim)) {
       // The paths of each profile together, as the CPU backend simulates them (within 1e-9 m
       // of the scalar poses, far inside the margin).

@@ -24,6 +24,8 @@
 
 namespace criticality::internal {
 
+class ObjectPathsCache;
+
 /** bound[n] >= |centre after n steps - centre now| for every hypothesis of `ego`
  *  (n = 0..sim.n_steps; bound[0] = 0). */
 std::vector<double> EgoReachBound(const core::HypothesisSet& ego,
@@ -45,8 +47,11 @@ double EgoReachAfter(const core::HypothesisSet& ego, const core::SimulationConfi
 /** out[o] = 1 when collision object o of `problem` (o < problem.objects.size()) can meet no
  *  ego hypothesis: neither its own box nor any of its carriages' boxes. `simd`: the objects'
  *  paths of one profile simulated together in SIMD lanes where they apply (cpu/sibling_steps.h,
- *  EstimatorOptions::simd), else one by one with the scalar step. */
-std::vector<char> OutOfReach(const Problem& problem, bool simd = false);
+ *  EstimatorOptions::simd), else one by one with the scalar step. `cache` (with simd): a set's
+ *  paths in SIMD lanes are taken from the batch's cache where a scene stored them, else
+ *  simulated whole and stored there (the CPU backend then copies them). */
+std::vector<char> OutOfReach(const Problem& problem, bool simd = false,
+                             ObjectPathsCache* cache = nullptr);
 
 /** `problem` without the objects marked in `drop` (their trajectories, their carriages',
  *  probabilities and results); kept objects and carriages keep their order. */

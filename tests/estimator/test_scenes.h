@@ -2,6 +2,7 @@
 // Scenes shared by the estimator tests.
 #include <random>
 #include <string>
+#include <vector>
 
 #include "bench/paper_scenes.h"
 #include "criticality/estimator.h"
@@ -72,6 +73,43 @@ inline Scene RandomScene(unsigned seed, int max_vehicles, int max_pedestrians, b
   // random stream, as the stop lines).
   if (seed % 3 == 2) s.euler_update_step_s = 0.1 * static_cast<double>(1 + seed % 10);
   return s;
+}
+
+/** A small fleet as a simulator step gives it (issue 23): six vehicles close together on a
+ *  straight 3-lane road (two in a queue, one cutting across), and one scene per vehicle with it
+ *  as the ego and the other five as objects, each vehicle's data the same in every scene it is
+ *  in. So every vehicle is an object in five scenes, and some of its hypotheses collide. */
+inline std::vector<Scene> FleetScenes() {
+  struct Member {
+    const char* id;
+    double x, y, yaw, v;
+  };
+  const Member members[] = {{"a", 0.0, 0.0, 0.0, 12.0},   {"b", 14.0, 0.0, 0.0, 6.0},
+                            {"c", 6.0, 3.5, 0.0, 14.0},   {"d", 22.0, -3.5, 0.3, 9.0},
+                            {"e", -15.0, 0.0, 0.0, 15.0}, {"f", 30.0, 3.5, -0.4, 8.0}};
+  std::vector<Scene> scenes;
+  for (const Member& ego : members) {
+    Scene s;
+    s.ego.id = ego.id;
+    s.ego.state.x_m = ego.x;
+    s.ego.state.y_m = ego.y;
+    s.ego.state.yaw_rad = ego.yaw;
+    s.ego.state.speed_mps = ego.v;
+    s.ego.lanes = bench::StraightThreeLanes();
+    for (const Member& m : members) {
+      if (&m == &ego) continue;
+      Vehicle v;
+      v.id = m.id;
+      v.state.x_m = m.x;
+      v.state.y_m = m.y;
+      v.state.yaw_rad = m.yaw;
+      v.state.speed_mps = m.v;
+      v.lanes = bench::StraightThreeLanes();
+      s.vehicles.push_back(v);
+    }
+    scenes.push_back(s);
+  }
+  return scenes;
 }
 
 /** The scene with every vehicle made a `user` (a truck, a train) pulling two 10 m carriages

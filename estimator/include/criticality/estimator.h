@@ -75,10 +75,19 @@ struct EstimatorOptions {
    *  sleep at once, for callers that share the cores with other work meanwhile (the pipelined
    *  driver, where SUMO's step runs beside the estimate). */
   bool spin_wait{true};
+  /** cpu backend, batches (Estimator::EstimateBatch): another road user whose hypothesis set
+   *  several scenes of the batch share (a fleet's neighbours see the same vehicle) is simulated
+   *  in one of them and copied to the others (cpu/object_paths_cache.h), up to this many MiB of
+   *  stored poses per batch. Changes nothing in the result; 0: every scene simulates its own
+   *  (for comparing the cost). */
+  int shared_object_paths_mib{256};
 };
 
 class EstimatorBackend;
 class ScenePool;
+namespace internal {
+class ObjectPathsCache;
+}
 
 /** Estimates the criticality of scenes. Reuses its buffers across calls; not thread-safe (use
  *  one Estimator per thread). With the cpu backend and threads() > 1 it also keeps a pool of
@@ -125,6 +134,14 @@ class Estimator {
   Params params_;
   EstimatorOptions options_;
   std::unique_ptr<EstimatorBackend> backend_;
+  /** Other road users' paths shared by the scenes of one batch (options_.shared_object_paths_mib;
+   *  null when off or not a cpu backend); the pool has its own for its workers. */
+  std::unique_ptr<internal::ObjectPathsCache> paths_cache_;
+  /** The cache of the batch being estimated (null: none), for the reach shortcut and the
+   *  backend: paths_cache_ during EstimateBatch, the pool's for a pool's worker. */
+  internal::ObjectPathsCache* batch_paths_{nullptr};
+  void SharePaths(internal::ObjectPathsCache* cache);
+  friend class ScenePool;            // shares one ObjectPathsCache among its workers' backends
   std::unique_ptr<ScenePool> pool_;  ///< cpu batches on threads() > 1, made at the first one
 };
 

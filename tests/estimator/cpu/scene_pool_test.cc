@@ -3,6 +3,7 @@
 // thread count, and an invalid scene's exception reaches the caller.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -153,6 +154,38 @@ TEST(ScenePool, BatchGivesEverySceneItsOwnEstimateOnAnyThreadCount) {
       ExpectSameEstimate(two[0], one_by_one[3], what + "3 of two");
       ExpectSameEstimate(two[1], one_by_one[0], what + "0 of two");
       EXPECT_TRUE(estimator.EstimateBatch({}).empty());
+    }
+  }
+}
+
+TEST(ScenePool, AFleetWhoseScenesShareTheirVehiclesGivesEverySceneItsOwnEstimate) {
+  // Each vehicle is an object in five of the six scenes: the batch simulates each once
+  // (EstimatorOptions::shared_object_paths_mib, on by default) and copies it to the others,
+  // whichever worker got there first; every scene must still get its own estimate.
+  const Params params = SmallParams();
+  const std::vector<Scene> scenes = testing::FleetScenes();
+  EstimatorOptions unshared = Options(1, false);
+  unshared.shared_object_paths_mib = 0;
+  std::vector<Result> one_by_one;
+  Estimator single(params, unshared);
+  for (const Scene& s : scenes) one_by_one.push_back(single.Estimate(s));
+  double p_max = 0.0;
+  for (const Result& r : one_by_one) p_max = std::max(p_max, r.p_collision);
+  EXPECT_GT(p_max, 0.0) << "the fleet should have collisions to get right";
+  for (int threads : {1, 2, 4}) {
+    for (bool reach_shortcut : {false, true}) {
+      Estimator estimator(params, Options(threads, reach_shortcut));
+      for (int round = 0; round < 2; ++round) {  // the second batch after the first's clear
+        const std::vector<Result> batch = estimator.EstimateBatch(scenes);
+        ASSERT_EQ(batch.size(), scenes.size());
+        for (size_t k = 0; k < scenes.size(); ++k) {
+          Result expected = one_by_one[k];
+          if (reach_shortcut) expected = Estimator(params, Options(1, true)).Estimate(scenes[k]);
+          ExpectSameEstimate(batch[k], expected,
+                             std::to_string(threads) + " threads, round " + std::to_string(round) +
+                                 ", scene " + std::to_string(k));
+        }
+      }
     }
   }
 }
