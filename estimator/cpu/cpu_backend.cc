@@ -266,6 +266,9 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
     return true;
   };
   const bool lanes = simd_ && internal::SiblingStepsApply(ego, pb.sim);
+  // A pack's lanes come from several profiles: their demands by step, computed once.
+  const internal::DemandTable ego_demands =
+      lanes ? internal::DemandsOf(ego, pb.sim) : internal::DemandTable{};
   constexpr int kPack = core::kMaxLateralSamples;
   std::vector<core::SimulationState> parents(ego.n_profiles,
                                              core::InitialSimulationState(ego, pb.sim));
@@ -333,6 +336,7 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
         const std::vector<std::pair<int, int>>& group = packs[task];
         internal::SiblingSpan span =
             internal::SpanOf(ego, pb.sim, group[0].first, n0, n1, static_cast<int>(group.size()));
+        span.demands = &ego_demands;
         for (size_t l = 0; l < group.size(); ++l) {
           const auto [profile, g] = group[l];
           const size_t at = ego_.Offset(profile * ego.n_paths + g * width);

@@ -455,9 +455,17 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       double demand[kBuf];
       bool drives = false;
       bool brakes_for_good = true;  // every lane's demand <= 0 from now to the horizon
+      const DemandTable* table = span->demands;
       for (size_t l = 0; l < distinct; ++l) {
-        const double a = core::RampedValue(t, h.profile_start, target[l], h.latency, h.rate);
-        demand[l] = two_track && !h.force_profiles ? core::SlipFactor(&lane_ctx[l], a) : a;
+        double a;
+        if (table) {
+          const size_t at = static_cast<size_t>(span->profile[lane_of(l)]) * table->steps + n;
+          a = table->ramp[at];
+          demand[l] = table->demand[at];
+        } else {
+          a = core::RampedValue(t, h.profile_start, target[l], h.latency, h.rate);
+          demand[l] = two_track && !h.force_profiles ? core::SlipFactor(&lane_ctx[l], a) : a;
+        }
         drives = drives || demand[l] > 0.0;
         brakes_for_good = brakes_for_good && a <= 0.0 && target[l] <= 0.0;
       }
@@ -664,6 +672,26 @@ bool SiblingStepsApply(const core::HypothesisSet& h, const core::SimulationConfi
   return h.model != core::MotionModelKind::kPedestrian && !h.on_track && cfg.controller.feedback &&
          h.n_lateral <= core::kMaxLateralSamples &&
          (h.combine_sections || h.n_paths <= core::kMaxLateralSamples);
+}
+
+DemandTable DemandsOf(const core::HypothesisSet& h, const core::SimulationConfig& cfg) {
+  DemandTable table;
+  table.steps = cfg.n_steps;
+  const size_t n_all = static_cast<size_t>(h.n_profiles) * cfg.n_steps;
+  table.ramp.resize(n_all);
+  table.demand.resize(n_all);
+  const bool slip = h.model == core::MotionModelKind::kTwoTrack && !h.force_profiles;
+  for (int profile = 0; profile < h.n_profiles; ++profile) {
+    const double target = h.profile_target[profile];
+    for (int n = 0; n < cfg.n_steps; ++n) {
+      const double t = n * cfg.tau;  // as SimulateChunk's step
+      const double a = core::RampedValue(t, h.profile_start, target, h.latency, h.rate);
+      const size_t at = static_cast<size_t>(profile) * cfg.n_steps + n;
+      table.ramp[at] = a;
+      table.demand[at] = slip ? core::LongitudinalForceFactor(a) : a;  // core::SlipFactor's
+    }
+  }
+  return table;
 }
 
 void SimulateSiblingSteps(SiblingSpan* span) { HWY_DYNAMIC_DISPATCH(SiblingStepsImpl)(span); }

@@ -13,6 +13,7 @@
 //
 // CosSin is the same vector math over an array (the poses' cos/sin for the box tests).
 #include <cstddef>
+#include <vector>
 
 #include "core/hypothesis_set.h"
 #include "core/trajectory_generation.h"
@@ -40,7 +41,21 @@ struct SiblingSpan {
    *  turned by the local frame's (the angle-sum identity: within a few ulp of cos(yaw)). */
   double* c[core::kMaxLateralSamples]{};
   double* s[core::kMaxLateralSamples]{};
+  /** Optional (null: each lane's computed at each step): every profile's longitudinal demand
+   *  by step, as DemandTable gives it, for spans whose lanes mix profiles (the ego's tree). */
+  const struct DemandTable* demands{nullptr};
 };
+
+/** Each profile's longitudinal demand at each step n of cfg.n_steps (t = n tau), as
+ *  core::VehicleStep takes it: `ramp` the profile's ramped value (core::RampedValue), `demand`
+ *  what the model gets (the two-track model's slip factor unless profiles are forces). Computed
+ *  once per estimate, so that a vector of lanes from several profiles loads its demands
+ *  instead of computing each lane's at each step; the same values bit for bit. */
+struct DemandTable {
+  int steps{0};
+  std::vector<double> ramp, demand;  ///< [profile * steps + n]
+};
+DemandTable DemandsOf(const core::HypothesisSet& h, const core::SimulationConfig& cfg);
 
 /** A span of `lanes` paths of (h, profile) over steps [n_begin, n_end); the caller sets each
  *  lane's path, start state and pose arrays. */
