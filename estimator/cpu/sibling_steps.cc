@@ -481,7 +481,13 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       // the seam speed (computed once for both).
       V cos_steer = zero, sin_steer = zero;
       bool steer_trig = false;
-      if (two_track) {
+      // Below the seam speed: core::KinematicSingleTrack, which sets the sideslip and the yaw
+      // rate itself (the dynamic model's numbers are dropped in those lanes, so where every
+      // lane is below it, as when a waiting vehicle starts, the dynamic model is not run).
+      const auto kin = hn::Lt(v, hn::Set(d, h.seam_speed));
+      if (hn::AllTrue(d, kin)) {
+        der = Derivative<V>{zero, zero, zero};
+      } else if (two_track) {
         SinCos(d, steer, &sin_steer, &cos_steer);
         steer_trig = true;
         der = TwoTrack(d, p, v, yr, cb, sb, steer, cos_steer, sin_steer, lon_demand);
@@ -489,10 +495,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
         der = OneTrack(d, p, v, beta, yr, steer, lon_demand);
       }
       V v_dot = der.v_dot, beta_dot = der.beta_dot, yaw_acc = der.yaw_acc;
-      // Below the seam speed: core::KinematicSingleTrack, which sets the sideslip and the yaw
-      // rate itself (the dynamic model's numbers are dropped in those lanes).
       V beta_e = beta, yr_e = yr, cb_e = cb, sb_e = sb, course_xe = course_x, course_ye = course_y;
-      const auto kin = hn::Lt(v, hn::Set(d, h.seam_speed));
       if (!hn::AllFalse(d, kin)) {
         V kv_dot = h.model == core::MotionModelKind::kTwoTrack
                        ? hn::Mul(hn::Set(d, mu_g), lon_demand)
