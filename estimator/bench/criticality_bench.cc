@@ -532,8 +532,8 @@ int main(int argc, char** argv) {
       "replay a scene file instead (written by sumo-criticality --record-scenes)")(
       "fleet", po::value(&opt.fleet),
       "estimate every .scene file in this folder as one batch (a recorded fleet step, e.g. "
-      "bench/fleet_step), on cpu and, when usable, cuda in this process: ms per batch, egos/s, "
-      "|dp_cra| against cpu")(
+      "bench/fleet_step), on cpu, cpu-unshared (each scene simulates its own other road users) "
+      "and, when usable, cuda in this process: ms per batch, egos/s, |dp_cra| against cpu")(
       "profiles", po::value(&opt.profiles)->default_value(opt.profiles),
       "acceleration/slip profiles per object (paper: 6 or 5)")(
       "backend", po::value(&opt.backend)->default_value(opt.backend),
