@@ -95,8 +95,15 @@ std::vector<Result> ScenePool::EstimateBatch(const std::vector<Scene>& scenes) {
   } clear_after{paths_cache_.get()};
   std::vector<Result> results(scenes.size());
   if (scenes.size() <= 1 || threads_.empty()) {
-    // Nothing to spread: worker 0's estimator on the caller's thread.
-    for (size_t k = 0; k < scenes.size(); ++k) results[k] = estimators_[0]->Estimate(scenes[k]);
+    // Nothing to spread: worker 0's estimator on the caller's thread. A lone scene has no one
+    // to share its objects with, so it stores no copies of them.
+    struct Lone {  // detaches the cache for one scene, and attaches it again (also on a throw)
+      Estimator& worker;
+      internal::ObjectPathsCache* cache;
+      ~Lone() { worker.SharePaths(cache); }
+    } lone{*estimators_[0], paths_cache_.get()};
+    if (scenes.size() == 1) lone.worker.SharePaths(nullptr);
+    for (size_t k = 0; k < scenes.size(); ++k) results[k] = lone.worker.Estimate(scenes[k]);
     return results;
   }
   {
