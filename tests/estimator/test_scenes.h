@@ -75,18 +75,20 @@ inline Scene RandomScene(unsigned seed, int max_vehicles, int max_pedestrians, b
   return s;
 }
 
-/** A small fleet as a simulator step gives it (issue 23): six vehicles close together on a
- *  straight 3-lane road (two in a queue, one cutting across), and one scene per vehicle with it
- *  as the ego and the other five as objects, each vehicle's data the same in every scene it is
- *  in. So every vehicle is an object in five scenes, and some of its hypotheses collide. */
+/** A small fleet as a simulator step gives it (issue 23): seven vehicles on a straight 3-lane
+ *  road (two in a queue, one cutting across, one oncoming from beyond most egos' reach), and
+ *  one scene per vehicle with it as the ego and the other six as objects, each vehicle's data
+ *  the same in every scene it is in. So every vehicle is an object in six scenes, and some of
+ *  its hypotheses collide. */
 inline std::vector<Scene> FleetScenes() {
   struct Member {
     const char* id;
     double x, y, yaw, v;
   };
-  const Member members[] = {{"a", 0.0, 0.0, 0.0, 12.0},   {"b", 14.0, 0.0, 0.0, 6.0},
-                            {"c", 6.0, 3.5, 0.0, 14.0},   {"d", 22.0, -3.5, 0.3, 9.0},
-                            {"e", -15.0, 0.0, 0.0, 15.0}, {"f", 30.0, 3.5, -0.4, 8.0}};
+  const Member members[] = {{"a", 0.0, 0.0, 0.0, 12.0},     {"b", 14.0, 0.0, 0.0, 6.0},
+                            {"c", 6.0, 3.5, 0.0, 14.0},     {"d", 22.0, -3.5, 0.3, 9.0},
+                            {"e", -15.0, 0.0, 0.0, 15.0},   {"f", 30.0, 3.5, -0.4, 8.0},
+                            {"g", 75.0, 3.5, 3.14159, 15.0}};
   std::vector<Scene> scenes;
   for (const Member& ego : members) {
     Scene s;

@@ -66,11 +66,11 @@ TEST(ObjectPathsCache, AnObjectAnotherSceneSimulatedIsCopiedAndGivesTheSamePairM
   for (bool simd : {true, false}) {
     internal::ObjectPathsCache cache(64u << 20);
     const long long repeats = ExpectSharedMatchesOwn(scenes, simd, &cache);
-    // Six vehicles, each an object in five fleet scenes: 30 sets, 6 distinct; the twin brings
-    // one new set (the faster object) and four repeats.
-    EXPECT_EQ(repeats, 24 + 4);
+    // Seven vehicles, each an object in six fleet scenes: 42 sets, 7 distinct; the twin brings
+    // one new set (the faster object) and five repeats.
+    EXPECT_EQ(repeats, 35 + 5);
     EXPECT_EQ(cache.Hits(), repeats) << (simd ? "simd" : "scalar");
-    EXPECT_EQ(cache.Misses(), 6 * 5 + 5 - repeats) << (simd ? "simd" : "scalar");
+    EXPECT_EQ(cache.Misses(), 7 * 6 + 6 - repeats) << (simd ? "simd" : "scalar");
   }
 }
 
@@ -83,7 +83,7 @@ TEST(ObjectPathsCache, NothingIsStoredBeyondTheCapacityAndClearForgetsEverything
   internal::ObjectPathsCache cache(64u << 20);
   ExpectSharedMatchesOwn({scenes[0], scenes[1]}, true, &cache);
   const long long hits = cache.Hits();
-  EXPECT_EQ(hits, 4);  // scene 1's objects but "a" were scene 0's
+  EXPECT_EQ(hits, 5);  // scene 1's objects but "a" were scene 0's
   cache.Clear();
   ExpectSharedMatchesOwn({scenes[0]}, true, &cache);
   EXPECT_EQ(cache.Hits(), hits) << "a cleared cache still found a set";

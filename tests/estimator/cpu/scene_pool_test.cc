@@ -159,9 +159,11 @@ TEST(ScenePool, BatchGivesEverySceneItsOwnEstimateOnAnyThreadCount) {
 }
 
 TEST(ScenePool, AFleetWhoseScenesShareTheirVehiclesGivesEverySceneItsOwnEstimate) {
-  // Each vehicle is an object in five of the six scenes: the batch simulates each once
+  // Each vehicle is an object in six of the seven scenes: the batch simulates each once
   // (EstimatorOptions::shared_object_paths_mib, on by default) and copies it to the others,
-  // whichever worker got there first; every scene must still get its own estimate.
+  // whichever worker got there first (with the reach shortcut, the oncoming "g" starts beyond
+  // most egos' final reach: the shortcut simulates and stores it, and the backend copies it
+  // where it is kept); every scene must still get its own estimate.
   const Params params = SmallParams();
   const std::vector<Scene> scenes = testing::FleetScenes();
   EstimatorOptions unshared = Options(1, false);
