@@ -200,7 +200,7 @@ void CpuBackend::GenerateTrajectories(const internal::Problem& pb) {
     }
   });
   for (size_t o = 0; o < keys.size(); ++o) {
-    if (cached[o]) continue;
+    if (cached[o] || !paths_cache_->HasRoom(pb.cos[o].Trajectories(), steps)) continue;
     auto p = std::make_shared<internal::ObjectPathsCache::Paths>();
     const auto [at, n] = set_range(o);
     p->steps = steps;

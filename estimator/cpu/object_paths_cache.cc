@@ -34,12 +34,16 @@ std::shared_ptr<const ObjectPathsCache::Paths> ObjectPathsCache::Find(
 }
 
 void ObjectPathsCache::Store(std::string key, std::shared_ptr<const Paths> paths) {
-  const size_t bytes = sizeof(double) * (paths->x.size() + paths->y.size() + paths->yaw.size() +
-                                         paths->c.size() + paths->s.size()) +
-                       key.size();
+  const size_t bytes = EntryBytes(paths->x.size());
   std::lock_guard<std::mutex> lock(mutex_);
   if (stored_bytes_ + bytes > capacity_bytes_) return;
   if (entries_.emplace(std::move(key), std::move(paths)).second) stored_bytes_ += bytes;
+}
+
+bool ObjectPathsCache::HasRoom(int trajectories, int steps) const {
+  const size_t bytes = EntryBytes(static_cast<size_t>(trajectories) * steps);
+  std::lock_guard<std::mutex> lock(mutex_);
+  return stored_bytes_ + bytes <= capacity_bytes_;
 }
 
 void ObjectPathsCache::Clear() {

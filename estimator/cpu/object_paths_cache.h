@@ -48,6 +48,9 @@ class ObjectPathsCache {
   std::shared_ptr<const Paths> Find(const std::string& key) const;
   /** Stores `paths` under `key` unless the key is there already or the capacity is reached. */
   void Store(std::string key, std::shared_ptr<const Paths> paths);
+  /** Whether a set of `trajectories` x `steps` poses would still fit: callers skip copying
+   *  (or simulating a set whole) for a store that would be refused. */
+  bool HasRoom(int trajectories, int steps) const;
   /** Forgets every entry (the end of a batch). */
   void Clear();
 
@@ -60,6 +63,11 @@ class ObjectPathsCache {
   mutable std::mutex mutex_;
   std::unordered_map<std::string, std::shared_ptr<const Paths>> entries_;
   size_t stored_bytes_{0};
+  // What an entry of that many poses takes: its five arrays and its key (KeyOf).
+  static size_t EntryBytes(size_t poses) {
+    return 5 * sizeof(double) * poses + sizeof(core::HypothesisSet) +
+           sizeof(core::SimulationConfig) + 1;
+  }
   mutable long long hits_{0}, misses_{0};
 };
 

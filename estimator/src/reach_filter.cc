@@ -113,19 +113,22 @@ std::vector<char> OutOfReach(const Problem& pb, bool simd, ObjectPathsCache* cac
       return false;
     };
     if (simd && cache && SiblingStepsApply(h, pb.sim)) {
-      // Another scene of the batch may have stored the set's paths; else they are simulated
-      // whole and stored, for the backend and the other scenes to copy.
+      // Another scene of the batch may have stored the set's paths; else, while the cache has
+      // room, they are simulated whole and stored, for the backend and the other scenes to copy
+      // (without room: profile by profile below, stopping at the first that comes near).
       std::string key = ObjectPathsCache::KeyOf(h, pb.sim, 1);
       std::shared_ptr<const ObjectPathsCache::Paths> paths = cache->Find(key);
-      if (!paths) {
+      if (!paths && cache->HasRoom(h.Trajectories(), steps)) {
         paths = SimulateLanePaths(h, pb.sim);
         cache->Store(std::move(key), paths);
       }
-      for (int t = 0; t < h.Trajectories(); ++t) {
-        const size_t at = static_cast<size_t>(t) * steps;
-        if (near(&paths->x[at], &paths->y[at])) return true;
+      if (paths) {
+        for (int t = 0; t < h.Trajectories(); ++t) {
+          const size_t at = static_cast<size_t>(t) * steps;
+          if (near(&paths->x[at], &paths->y[at])) return true;
+        }
+        return false;
       }
-      return false;
     }
     if (simd && SiblingStepsApply(h, pb.sim)) {
       // The paths of each profile together, as the CPU backend simulates them (within 1e-9 m

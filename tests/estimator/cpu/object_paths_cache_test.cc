@@ -16,6 +16,7 @@
 #include "cpu/cpu_backend.h"
 #include "criticality/errors.h"
 #include "src/problem.h"
+#include "src/reach_filter.h"
 
 namespace criticality {
 namespace {
@@ -87,6 +88,41 @@ TEST(ObjectPathsCache, NothingIsStoredBeyondTheCapacityAndClearForgetsEverything
   cache.Clear();
   ExpectSharedMatchesOwn({scenes[0]}, true, &cache);
   EXPECT_EQ(cache.Hits(), hits) << "a cleared cache still found a set";
+}
+
+TEST(ObjectPathsCache, TheReachShortcutDropsTheSameObjectsWithRoomAndWithout) {
+  // With room, the shortcut simulates a set whole and stores it; without, it simulates profile
+  // by profile, stopping at the first that comes near, as without a cache. Either way the same
+  // objects are dropped. Two objects start beyond the ego's final reach: one oncoming in its
+  // lane (kept), one driving away behind it (dropped); one starts near (kept unsimulated).
+  Scene scene;
+  scene.ego.id = "ego";
+  scene.ego.state.speed_mps = 12.0;
+  scene.ego.lanes = bench::StraightThreeLanes();
+  auto add = [&](const char* id, double x, double yaw, double v) {
+    Vehicle o;
+    o.id = id;
+    o.state.x_m = x;
+    o.state.yaw_rad = yaw;
+    o.state.speed_mps = v;
+    o.lanes = bench::StraightThreeLanes();
+    scene.vehicles.push_back(o);
+  };
+  add("oncoming", 80.0, 3.14159, 15.0);
+  add("away", -90.0, 3.14159, 10.0);
+  add("near", 12.0, 0.0, 8.0);
+  const internal::Problem pb = internal::BuildProblem(scene, Params{});
+  const std::vector<char> expected = internal::OutOfReach(pb, true);
+  ASSERT_EQ(expected, (std::vector<char>{0, 1, 0})) << "the scene should keep, drop, keep";
+  internal::ObjectPathsCache roomy(64u << 20), tiny(1);
+  EXPECT_TRUE(roomy.HasRoom(42, 100));
+  EXPECT_FALSE(tiny.HasRoom(1, 1));
+  for (int round = 0; round < 2; ++round) {  // the second round finds what the first stored
+    EXPECT_EQ(internal::OutOfReach(pb, true, &roomy), expected) << "round " << round;
+    EXPECT_EQ(internal::OutOfReach(pb, true, &tiny), expected) << "round " << round;
+  }
+  EXPECT_EQ(roomy.Hits(), 2) << "the two objects beyond reach, stored in the first round";
+  EXPECT_EQ(tiny.Hits(), 0);
 }
 
 TEST(ObjectPathsCache, ANegativeCapacityIsRefused) {
