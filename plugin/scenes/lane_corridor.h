@@ -53,7 +53,8 @@ struct LaneSampling {
   bool centre_within_lane{true};
   /** Params::lane_corners: a centre line that turns by at least kStraightThenTurnMinRad
    *  between the first and the last sample is sampled as a corner (CornerOf), with the
-   *  tangent length (of 8 from 1 m to the shorter straight) whose fit keeps closest to it. */
+   *  tangent length (CornerOf's own estimate or one of 12 from 1 m to the longer straight)
+   *  whose fit keeps closest to it. */
   bool corners{false};
 };
 constexpr double kStraightToleranceRad = 0.05235987755982989;   // 3 degrees

@@ -24,19 +24,22 @@ TEST(ParallelFor, EveryIndexOnceWhateverTheThreads) {
   }
 }
 
-thread_local int calls_on_this_thread = 0;
-
 TEST(ParallelFor, HelperThreadsAreKeptAcrossCalls) {
-  // Each part counts the calls its thread has served: a helper started for every call would
-  // count 1 each time; a kept one counts on.
+  // Each part records the thread that ran it: parts 1.. run on helpers (not the caller), and
+  // the same helpers serve every call (a helper started for each call would have a new id).
   const int threads = 3, calls = 20;
-  int most = 0;
+  std::vector<std::thread::id> first(threads);
   for (int c = 0; c < calls; ++c) {
-    std::vector<int> counts(threads, 0);
-    CallersPool().Run(threads, [&](int part) { counts[part] = ++calls_on_this_thread; });
-    for (int part = 1; part < threads; ++part) most = std::max(most, counts[part]);
+    std::vector<std::thread::id> ran(threads);
+    CallersPool().Run(threads, [&](int part) { ran[part] = std::this_thread::get_id(); });
+    EXPECT_EQ(ran[0], std::this_thread::get_id());
+    for (int part = 1; part < threads; ++part) {
+      EXPECT_NE(ran[part], std::this_thread::get_id()) << "part " << part << ", call " << c;
+      if (c == 0) first[part] = ran[part];
+      EXPECT_EQ(ran[part], first[part]) << "part " << part << ", call " << c;
+    }
   }
-  EXPECT_GE(most, calls);  // the helpers served every call
+  EXPECT_NE(first[1], first[2]);
 }
 
 TEST(ParallelFor, AnErrorInAChunkIsRethrownAndThePoolGoesOn) {

@@ -28,9 +28,18 @@ std::string EstimateError(const Scene& scene, const Params& params = {}) {
   return "";
 }
 
+// The message names the field and its value as "FIELD = VALUE" (a value found anywhere else,
+// such as the "0" of "must be > 0", does not count).
 void ExpectMentions(const std::string& msg, const std::string& field, const std::string& value) {
-  EXPECT_NE(msg.find(field), std::string::npos) << msg;
-  EXPECT_NE(msg.find(value), std::string::npos) << msg;
+  EXPECT_NE(msg.find(field + " = " + value), std::string::npos) << msg;
+}
+
+// The message names the field and, after it, what is wrong with it.
+void ExpectNamesProblem(const std::string& msg, const std::string& field,
+                        const std::string& problem) {
+  const size_t at = msg.find(field);
+  ASSERT_NE(at, std::string::npos) << msg;
+  EXPECT_NE(msg.find(problem, at + field.size()), std::string::npos) << msg;
 }
 
 TEST(Validation, NanAndInfiniteStates) {
@@ -45,7 +54,7 @@ TEST(Validation, NanAndInfiniteStates) {
 TEST(Validation, EulerUpdateStepMustBeInRange) {
   Scene scene = bench::PaperSceneS1();
   const std::vector<std::pair<double, std::string>> bad{
-      {-0.1, "-0.1"}, {11.0, "= 11"}, {std::numeric_limits<double>::quiet_NaN(), "nan"}};
+      {-0.1, "-0.1"}, {11.0, "11"}, {std::numeric_limits<double>::quiet_NaN(), "nan"}};
   for (const auto& [value, text] : bad) {
     scene.euler_update_step_s = value;
     ExpectMentions(EstimateError<InputError>(scene), "scene.euler_update_step_s", text);
@@ -130,8 +139,8 @@ TEST(Validation, CarriagesAreCheckedBoxByBox) {
   s = with_carriages(1);
   s.vehicles[0].carriages[0].lanes = bench::StraightThreeLanes();
   s.vehicles[0].carriages[0].lanes->own->left.points[1].x = 0.0;  // repeated x
-  ExpectMentions(EstimateError<InputError>(s),
-                 "scene.vehicles[0] ('tram3').carriages[0].lanes.own.left", "distinct x");
+  ExpectNamesProblem(EstimateError<InputError>(s),
+                     "scene.vehicles[0] ('tram3').carriages[0].lanes.own.left", "distinct x");
 }
 
 TEST(Validation, VehicleTypeValuesMustBePositive) {
@@ -154,11 +163,11 @@ TEST(Validation, VehicleTypeValuesMustBePositive) {
 TEST(Validation, DegenerateLanePoints) {
   Scene s = bench::PaperSceneS1();
   s.ego.lanes.right->right.points[2] = s.ego.lanes.right->right.points[1];
-  ExpectMentions(EstimateError<InputError>(s), "scene.ego.lanes.right.right", "distinct x");
+  ExpectNamesProblem(EstimateError<InputError>(s), "scene.ego.lanes.right.right", "distinct x");
   s = bench::PaperSceneS1();
   s.vehicles[2].lanes->own->left.points[0].y = std::nan("");
   ExpectMentions(EstimateError<InputError>(s),
-                 "scene.vehicles[2] ('right-behind').lanes.own.left.points[0]", "nan");
+                 "scene.vehicles[2] ('right-behind').lanes.own.left.points[0]", "(0, nan)");
 }
 
 TEST(Validation, HorizonAndStepMustBePositive) {

@@ -82,8 +82,10 @@ case $case in
     echo "collision speed: warn $v_warn m/s, brake ${v_brake} m/s (0 = avoided)"
     check "brake: an action was recorded" test "$(q "$brake_db" "select count(*) from actions where kind='brake'")" -ge 1
     check "brake: the collision is avoided or slower" python3 -c "import sys; sys.exit(0 if float('$v_brake') < float('$v_warn') - 1.0 else 1)"
+    # Handed back: a release after the last brake; or the run ended while braking (its last
+    # action a brake).
     check "brake: control is handed back (release recorded) or the run ends braking" \
-      test "$(q "$brake_db" "select count(*) from actions")" -ge 1
+      test "$(q "$brake_db" "select (select count(*) from actions where kind='release' and time_s >= (select max(time_s) from actions where kind='brake')) + (select count(*) from (select kind from actions order by time_s desc, rowid desc limit 1) where kind='brake')")" -ge 1
     ;;
   conversion_replay)
     db=$work/conversion.sqlite scenes=$work/scenes
