@@ -262,6 +262,7 @@ Params ParamsPreset(const std::string& name) {
     p.footway_pedestrians = false;
     p.curve_speed_reference = false;
     p.straight_before_turn = false;
+    p.straight_before_turn_by_fit = false;
     p.lane_fit_within_lane = false;
     p.route_end_leaves = false;
     p.road_user_classes = false;

@@ -175,6 +175,7 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_road_model) p.road_model = false;
   if (raw.no_car_following) p.expected_accel_reference = false;
   if (raw.no_lane_fit_check) p.lane_fit_within_lane = false;
+  if (raw.no_straight_by_fit) p.straight_before_turn_by_fit = false;
   if (raw.lane_corners) p.lane_corners = true;
   if (raw.release_braking) {
     p.release_unexplained_braking = true;

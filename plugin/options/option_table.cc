@@ -27,6 +27,7 @@ OptionTable::OptionTable(DriverOptions* o) {
   Simulation(o);
   Acting(o);
   Estimator(o);
+  ModelChoices();
   Output(o);
 }
 
@@ -134,6 +135,35 @@ void OptionTable::Estimator(DriverOptions* o) {
       "sizes, classes, lane geometry, signals, turn signals): each vehicle's way on is its "
       "blinker's or straight on, not its route; no route ends, no pedestrians' next edges, a "
       "class's limits instead of its vType's (plugin/README.md, \"Observable-only inputs\")")(
+      "threads", po::value(&o->estimator.threads)->default_value(0, "0 = all cores"),
+      "estimator threads; 0: all cores, but with named egos and the pipelined driver (--act "
+      "none or warn) all but one, which SUMO's step takes")(
+      "no-pipeline", po::bool_switch(&raw.no_pipeline),
+      "estimate each step before SUMO makes the next; by default, under --act none and warn, "
+      "step k is estimated on a thread of its own while SUMO makes step k+1 (the same results, "
+      "the criticality published to SUMO one step later; --act brake always waits)")(
+      "profiles", Value(&p.profiles), "acceleration/slip profiles per object (paper: 6 or 5)")(
+      "own-lane-samples", Value(&p.own_lane_samples),
+      "lateral path samples across the own lane (paper: 3)")(
+      "neighbour-lane-samples", Value(&p.neighbour_lane_samples),
+      "lateral path samples across each neighbouring lane (paper: 2); ego paths = samples^3")(
+      "horizon", Value(&p.horizon_s),
+      "prediction horizon (s); the path sample instants (paper: 1.0, 1.5, 2.0 s of 2 s) scale "
+      "with it")("step", Value(&p.step_s), "prediction step (s)")(
+      "range", Value(&o->observe.range_m),
+      "vehicles and pedestrians within this distance of an ego are considered (m)")(
+      "no-simd", po::bool_switch(&raw.no_simd),
+      "cpu backend: the scalar fast path instead of SIMD lanes (the same pair matrix as the "
+      "plain reference, bit for bit; SIMD differs at most in contacts within 1 mm)")(
+      "no-reach-shortcut", po::bool_switch(&raw.no_shortcut),
+      "estimate objects that cannot reach the ego within the horizon, and egos with no object "
+      "in reach, in full (the exact shortcut changes no result; this is for checking that)");
+  all_.add(e);
+}
+
+void OptionTable::ModelChoices() {
+  po::options_description m("Model choices (ours; estimator/ALGORITHM.md, plugin/README.md)");
+  m.add_options()(
       "no-crossing-obligations", po::bool_switch(&raw.no_crossing_obligations),
       "ablation (ours): a pedestrian at a crossing it may not enter yet (red, or no priority "
       "while a vehicle approaches) is not read as waiting on the footway; the rule reads the "
@@ -201,37 +231,19 @@ void OptionTable::Estimator(DriverOptions* o) {
       "ablation (ours): use a lane's three samples over the full reach even where the parabola "
       "through them leaves the lane between them (by default such a lane is sampled over a "
       "shorter reach; estimator Params::lane_fit_within_lane)")(
+      "no-straight-by-fit", po::bool_switch(&raw.no_straight_by_fit),
+      "ablation (ours): where a straight of 2 to 15 m (and half a second of the vehicle's "
+      "travel) leads into a turn, take the middle samples at the middle of the reach; by "
+      "default they go to the straight's end instead where that fit keeps closer to the road "
+      "(estimator Params::straight_before_turn_by_fit)")(
       "lane-corners", po::bool_switch(&raw.lane_corners),
       "experimental (ours, off by default): a lane that turns by 15 degrees or more over its "
       "sampled reach is sent as a corner (straight, a parabola tangent to both straights, "
       "straight) instead of three samples on it (estimator Params::lane_corners)")(
       "no-car-following", po::bool_switch(&raw.no_car_following),
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
-      "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)")(
-      "threads", po::value(&o->estimator.threads)->default_value(0, "0 = all cores"),
-      "estimator threads; 0: all cores, but with named egos and the pipelined driver (--act "
-      "none or warn) all but one, which SUMO's step takes")(
-      "no-pipeline", po::bool_switch(&raw.no_pipeline),
-      "estimate each step before SUMO makes the next; by default, under --act none and warn, "
-      "step k is estimated on a thread of its own while SUMO makes step k+1 (the same results, "
-      "the criticality published to SUMO one step later; --act brake always waits)")(
-      "profiles", Value(&p.profiles), "acceleration/slip profiles per object (paper: 6 or 5)")(
-      "own-lane-samples", Value(&p.own_lane_samples),
-      "lateral path samples across the own lane (paper: 3)")(
-      "neighbour-lane-samples", Value(&p.neighbour_lane_samples),
-      "lateral path samples across each neighbouring lane (paper: 2); ego paths = samples^3")(
-      "horizon", Value(&p.horizon_s),
-      "prediction horizon (s); the path sample instants (paper: 1.0, 1.5, 2.0 s of 2 s) scale "
-      "with it")("step", Value(&p.step_s), "prediction step (s)")(
-      "range", Value(&o->observe.range_m),
-      "vehicles and pedestrians within this distance of an ego are considered (m)")(
-      "no-simd", po::bool_switch(&raw.no_simd),
-      "cpu backend: the scalar fast path instead of SIMD lanes (the same pair matrix as the "
-      "plain reference, bit for bit; SIMD differs at most in contacts within 1 mm)")(
-      "no-reach-shortcut", po::bool_switch(&raw.no_shortcut),
-      "estimate objects that cannot reach the ego within the horizon, and egos with no object "
-      "in reach, in full (the exact shortcut changes no result; this is for checking that)");
-  all_.add(e);
+      "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)");
+  all_.add(m);
 }
 
 void OptionTable::Output(DriverOptions* o) {

@@ -21,7 +21,8 @@ struct RawOptions {
   std::vector<std::string> events;
   std::string ego_classes;  ///< --ego-classes ("": the default)
   bool no_lateral_controller{false}, no_road_model{false}, no_car_following{false},
-      no_lane_fit_check{false}, lane_corners{false}, no_lane_heading_yaw_rate{false};
+      no_lane_fit_check{false}, lane_corners{false}, no_lane_heading_yaw_rate{false},
+      no_straight_by_fit{false};
   bool no_progress{false}, no_shortcut{false}, no_crossing_obligations{false},
       no_crossing_stops{false}, no_yield_stops{false}, no_heading_hold{false},
       no_way_heading{false}, junction_shapes{false}, no_junction_shapes{false}, bent_bodies{false},
@@ -43,6 +44,7 @@ class OptionTable {
   void Simulation(DriverOptions* o);
   void Acting(DriverOptions* o);
   void Estimator(DriverOptions* o);
+  void ModelChoices();  ///< the driver's and estimator's own rules: ablations, experiments
   void Output(DriverOptions* o);
 
   boost::program_options::options_description all_;

@@ -12,6 +12,7 @@ LaneSampling LaneSamplingFor(const Params& params) {
   s.turn_lane_frame = params.turn_lane_frame && params.road_model;
   s.turn_lane_frame_min_rad = params.turn_lane_frame_min_rad;
   s.straight_before_turn = params.straight_before_turn && params.road_model;
+  s.straight_by_fit = params.straight_before_turn_by_fit && s.straight_before_turn;
   s.centre_within_lane = params.lane_fit_within_lane && params.road_model;
   s.corners = params.lane_corners && params.road_model;
   return s;
@@ -132,13 +133,18 @@ namespace {
 // The lanes sampled over exactly `reach_m` (see SampleLaneSet); nullopt when the own lane's
 // samples cannot be fitted in the frame the estimator will fit them in. *within_lane: false
 // when LaneSampling::centre_within_lane finds the own lane's fitted centre out of the lane.
+// `straight` > 0: the middle samples at that distance (a straight of that length, as
+// StraightBeforeTurn's) instead of StraightBeforeTurn's choice.
 std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
-                                  const LaneSampling& sampling, bool* within_lane) {
+                                  const LaneSampling& sampling, bool* within_lane,
+                                  double straight_m = 0.0) {
   *within_lane = true;
   const std::optional<Corner> corner =
       sampling.corners ? CornerOf(c.centre, c.position_m, c.position_m + reach_m) : std::nullopt;
-  const double straight =
-      sampling.straight_before_turn && !corner ? StraightBeforeTurn(c, reach_m) : 0.0;
+  const double straight = straight_m > 0.0 ? straight_m
+                          : sampling.straight_before_turn && !corner
+                              ? StraightBeforeTurn(c, reach_m)
+                              : 0.0;
   const double middle = straight > 0.0 ? straight : 0.5 * reach_m;
   const double s[3] = {c.position_m, c.position_m + middle, c.position_m + reach_m};
   // Each divider is the centre line shifted left by `offset` (negative: right); a corner's
@@ -239,6 +245,56 @@ std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const P
   return set;
 }
 
+// LaneSampling::straight_by_fit: the straight ahead where it is too short for
+// StraightBeforeTurn (kMinChosenStraightM to kMinStraightM, and kSteerLeadS of travel) and leads
+// into a turn within the reach; 0 where none.
+double ShortStraightBeforeTurn(const LaneCorridor& c, double reach_m) {
+  double start_heading = 0.0, end_heading = 0.0;
+  PointAlong(c.centre, c.position_m, &start_heading);
+  PointAlong(c.centre, c.position_m + reach_m, &end_heading);
+  if (std::fabs(WrapAngle(end_heading - start_heading)) < kStraightThenTurnMinRad) return 0.0;
+  const double straight = StraightFrom(c.centre, c.position_m, start_heading, reach_m);
+  const double least = std::fmax(kMinChosenStraightM, kSteerLeadS * c.speed_mps);
+  return straight >= least && straight < kMinStraightM && straight <= reach_m - kMinTurnM ? straight
+                                                                                          : 0.0;
+}
+
+// The own lane's fitted centre's largest distance from `centre` (LaneCentreDeviation, in the
+// frame the estimator fits the set in); HUGE_VAL where it cannot be fitted.
+double OwnCentreDeviation(const LaneSet& set, const LaneSampling& sampling,
+                          const std::vector<Point2>& centre) {
+  Params frame_params;
+  frame_params.turn_lane_frame = sampling.turn_lane_frame;
+  frame_params.turn_lane_frame_min_rad = sampling.turn_lane_frame_min_rad;
+  try {
+    return LaneCentreDeviation(*set.own, LaneFrameAngle(set, frame_params), centre);
+  } catch (const InputError&) {
+    return HUGE_VAL;
+  }
+}
+
+// LaneSampling::straight_by_fit over `reach_m`: *set (and *within_lane) become the set sampled
+// with the middle samples at a short straight's end where that set is usable and either *set
+// is not (none, or out of its lane) or that set's own centre keeps closer to the road.
+void ChooseStraightByFit(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
+                         const LaneSampling& sampling, std::optional<LaneSet>* set,
+                         bool* within_lane) {
+  const double straight = ShortStraightBeforeTurn(c, reach_m);
+  if (straight <= 0.0) return;
+  bool alt_within = true;
+  std::optional<LaneSet> alt = SampleOver(c, reach_m, X_WV, sampling, &alt_within, straight);
+  if (!alt) return;
+  if (!*set || !*within_lane) {
+    *set = std::move(alt);
+    *within_lane = alt_within;
+    return;
+  }
+  if (!alt_within) return;
+  const std::vector<Point2> centre = CentreLineAhead(c, X_WV, reach_m);
+  if (OwnCentreDeviation(*alt, sampling, centre) < OwnCentreDeviation(**set, sampling, centre))
+    *set = std::move(alt);
+}
+
 }  // namespace
 
 LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
@@ -255,6 +311,9 @@ LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
   auto sample = [&](double reach) -> std::optional<LaneSet> {
     bool within_lane = true;
     std::optional<LaneSet> set = SampleOver(c, reach, X_WV, sampling, &within_lane);
+    const bool long_straight = set && set->own && set->own->straight_to_middle;
+    if (sampling.straight_by_fit && !sampling.corners && !long_straight)
+      ChooseStraightByFit(c, reach, X_WV, sampling, &set, &within_lane);
     if (set && !within_lane) {
       if (!fallback) fallback = set;
       return std::nullopt;

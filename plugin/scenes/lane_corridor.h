@@ -22,6 +22,8 @@ struct NeighbourLane {
 
 struct LaneCorridor {
   std::vector<Point2> centre;  ///< the own lane's centre line, in driving direction (world)
+  /** The vehicle's speed along it (LaneSampling::straight_by_fit: how soon it reaches a turn). */
+  double speed_mps{0.0};
   double position_m{0.0};      ///< arc length along `centre` of the vehicle's centre of gravity
   double width_m{3.2};
   std::optional<NeighbourLane> left;
@@ -47,6 +49,12 @@ struct LaneSampling {
    *  turns by at least kStraightThenTurnMinRad within the reach, the middle samples go where
    *  the straight ends and every lane is marked Lane::straight_to_middle. */
   bool straight_before_turn{true};
+  /** Params::straight_before_turn_by_fit: where a straight shorter than kMinStraightM (at least
+   *  kMinChosenStraightM and kSteerLeadS of the vehicle's travel) leads into a turn, the set
+   *  sampled as straight_before_turn does for long straights replaces the plain one where its
+   *  own lane's fitted centre keeps closer to the corridor's centre line (LaneCentreDeviation),
+   *  or where the plain one cannot be used. */
+  bool straight_by_fit{true};
   /** Params::lane_fit_within_lane: a set whose own lane's fitted centre line lies farther than
    *  half the lane's width from the corridor's centre line (LaneCentreDeviation, checked every
    *  metre of the sampled reach) is not used at that reach (SampleLaneSet tries shorter). */
@@ -65,6 +73,11 @@ constexpr double kStraightThenTurnMinRad = 0.2617993877991494;  // 15 degrees
 constexpr double kMinStraightM = 15.0;
 /** ... and the turn keeps at least this much of the reach beyond the straight. */
 constexpr double kMinTurnM = 5.0;
+/** LaneSampling::straight_by_fit: straights from this long, and from this much of the
+ *  vehicle's travel (the time to steer into a turn at the controller's 0.9 rad/s: a 10 m
+ *  radius asks about 0.27 rad for a car), are sampled both ways and the closer fit is kept. */
+constexpr double kMinChosenStraightM = 2.0;
+constexpr double kSteerLeadS = 0.5;
 constexpr double kPaperFrameMaxTurnRad = 1.0471975511965976;  // 60 degrees
 constexpr double kTurnEndToleranceRad = 0.05235987755982989;  // 3 degrees
 /** In the turn frame, the samples still stop where the centre line has turned this far

@@ -81,6 +81,7 @@ ObjectLanes LanesOf(const VehicleOnLane& v, const SceneConfig& config, double st
   c.centre = network->Lane(v.lane).shape;
   c.position_m = v.lane_position_m - 0.5 * v.length_m;
   c.width_m = network->Lane(v.lane).width_m;
+  c.speed_mps = v.speed_mps;
   const double reach = ReachAhead(v.speed_mps, config);
   std::string beyond_junction;  // the first normal lane after an internal one
   FollowRoute(v, reach, network, &c, &beyond_junction, &out.route_end_m);

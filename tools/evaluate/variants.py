@@ -78,6 +78,10 @@ VARIANTS = [
             "ours using a lane's samples over the full reach even where their parabola leaves "
             "the lane (--no-lane-fit-check)",
             {"act": "warn", "no-lane-fit-check": "true"}),
+    Variant("no-straight-by-fit",
+            "ours taking a short straight's (2-15 m) middle samples at the middle of the reach, "
+            "not at the straight's end where that fits the road better (--no-straight-by-fit)",
+            {"act": "warn", "no-straight-by-fit": "true"}),
     Variant("lane-corners",
             "experiment (ours): lanes that turn are sent as corners: straight, a parabola "
             "tangent to both straights, straight (--lane-corners)",

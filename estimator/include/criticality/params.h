@@ -226,6 +226,16 @@ struct Params {
    *  parabola tangent to it through the third (estimator/ALGORITHM.md "Straight road before a
    *  turn"); with false the mark is ignored. Project choice; paper-literal: false. */
   bool straight_before_turn{true};
+  /** The SUMO driver's lane sampling: straight_before_turn applies to straights of 15 m or more
+   *  (shorter ones lead into turns a vehicle may be steering into already, where the parabola
+   *  through the whole turn followed it better). From 2 m up to 15 m, and at least half a
+   *  second of the vehicle's travel (time to steer into the turn at the controller's steering
+   *  rate), the middle samples go to the straight's end where that fit keeps closer to the
+   *  road's centre line than the parabola through the reach's middle (LaneCentreDeviation).
+   *  Traced: the switch at 15 m moved a car's reference 0.7 m towards a pedestrian on the
+   *  footway in one 0.1 s step (bench/RESULTS.md, 2026-12-06, "flicker"). Project choice;
+   *  paper-literal: false (needs straight_before_turn). Driver: --no-straight-by-fit. */
+  bool straight_before_turn_by_fit{true};
   /** The SUMO driver's lane sampling: a lane that runs straight for 2 m ahead of the vehicle
    *  and then turns by at least 15 degrees over its sampled reach is sent as a corner (Lane::corner_tangent_m): the straights along the road's
    *  direction at its first and last samples, their meeting point, and where the turn begins

@@ -320,8 +320,16 @@ TEST(DriverOptions, EachStageGetsItsConfigFromTheOptionsAndTheFinalParameters) {
   // paper-literal samples lanes in the paper's frame, without the straight-before-turn mark.
   EXPECT_FALSE(d.scenes.lane_sampling.turn_lane_frame);
   EXPECT_FALSE(d.scenes.lane_sampling.straight_before_turn);
+  EXPECT_FALSE(d.scenes.lane_sampling.straight_by_fit);
   EXPECT_TRUE(Parse({"--connect", "h:1", "--ego", "e", "--output", "x"})
                   .options.scenes.lane_sampling.turn_lane_frame);
+  EXPECT_TRUE(Parse({"--connect", "h:1", "--ego", "e", "--output", "x"})
+                  .options.scenes.lane_sampling.straight_by_fit);
+  const ParseOutcome no_fit =
+      Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--no-straight-by-fit"});
+  EXPECT_FALSE(no_fit.options.params.straight_before_turn_by_fit);
+  EXPECT_FALSE(no_fit.options.scenes.lane_sampling.straight_by_fit);
+  EXPECT_TRUE(no_fit.options.scenes.lane_sampling.straight_before_turn);
   // The closed loop brakes as the escape routes do, and releases at half its threshold.
   EXPECT_EQ(d.act.closed_loop.brake.latency_s, d.params.latency_s);
   EXPECT_EQ(d.act.closed_loop.brake.jerk_mps3, d.params.jerk_mps3);

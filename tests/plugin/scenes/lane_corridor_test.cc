@@ -206,16 +206,30 @@ TEST(LaneCorridor, ALaneWhoseFitLeavesItIsSampledShorter) {
   };
   LaneSampling unchecked;
   unchecked.centre_within_lane = false;
+  unchecked.straight_by_fit = false;
   const LaneSet full = SampleLaneSet(c, kReach, X_WV, unchecked);
   ASSERT_TRUE(full.own);
   EXPECT_NEAR(full.own->left.points[1].x, 16.6, 0.1);  // the recorded scene's samples
   EXPECT_NEAR(full.own->left.points[2].y, 12.4, 0.1);
   EXPECT_GT(deviation(full, centre), 0.5 * c.width_m);
-  const LaneSet checked = SampleLaneSet(c, kReach, X_WV);
+  LaneSampling checking;
+  checking.straight_by_fit = false;
+  const LaneSet checked = SampleLaneSet(c, kReach, X_WV, checking);
   ASSERT_TRUE(checked.own);
   EXPECT_LT(checked.own->left.points[2].y, full.own->left.points[2].y - 3.0);  // shorter
   // Along the straight the car is on, the shorter fit strays less.
   EXPECT_LT(deviation(checked, approach), deviation(full, approach) - 0.5);
+  // By default (LaneSampling::straight_by_fit) the car at its speed, 7.3 m/s, gets the straight
+  // to the turn and the turn over the full reach: within the lane, and on the straight closer
+  // than either.
+  LaneCorridor at_speed = c;
+  at_speed.speed_mps = 7.3;
+  const LaneSet chosen = SampleLaneSet(at_speed, kReach, X_WV);
+  ASSERT_TRUE(chosen.own);
+  EXPECT_TRUE(chosen.own->straight_to_middle);
+  EXPECT_NEAR(chosen.own->left.points[2].y, full.own->left.points[2].y, 1e-9);  // full reach
+  EXPECT_LT(deviation(chosen, centre), 0.5 * c.width_m);
+  EXPECT_LT(deviation(chosen, approach), 0.05);
   // A lane that the fit follows keeps its reach: the straight road.
   LaneCorridor straight;
   straight.centre = {{0, 0}, {100, 0}};
@@ -281,6 +295,7 @@ TEST(LaneCorridor, ACornerFollowsAShortStraightIntoASharpTurn) {
   };
   LaneSampling samples;
   samples.centre_within_lane = false;
+  samples.straight_by_fit = false;
   const LaneSet three = SampleLaneSet(c, kReach, X_WV, samples);
   ASSERT_TRUE(three.own);
   // Over the whole reach the corner keeps within the lane (the lane-fit check takes it at the
@@ -323,6 +338,57 @@ TEST(LaneCorridor, OnlyAStraightFollowedByATurnIsSampledToItsEnd) {
   EXPECT_EQ(StraightBeforeTurn(later, 30.0), 0.0);
   later.position_m = 12.0;  // 18 m of straight left
   EXPECT_NEAR(StraightBeforeTurn(later, 30.0), 18.0, 0.5);
+}
+
+// LaneSampling::straight_by_fit: 2-15 m of straight before a turn (StraightBeforeTurn leaves
+// those to the parabola through the reach's middle). At each place on the approach the set
+// sent keeps at least as close to the road as the plain one; at some the straight's end wins,
+// at others the plain samples; and a vehicle too fast to steer in within kSteerLeadS keeps the
+// plain samples. Catches a choice that ignores the fits (always or never the straight), one
+// that compares the wrong fits, and an ignored speed.
+TEST(LaneCorridor, AShortStraightBeforeATurnIsSampledToItsEndWhereThatFitsBetter) {
+  constexpr double kReach = 30.0;
+  LaneSampling plain;
+  plain.straight_by_fit = false;
+  auto deviation = [](const LaneSet& set, const std::vector<Point2>& line) {
+    return LaneCentreDeviation(*set.own, LaneFrameAngle(set, Params{}), line);
+  };
+  int to_the_straights_end = 0, plain_kept = 0;
+  // (StraightBeforeTurn measures up to 1 m more: the arc's first segment turns by 5 degrees.)
+  for (double straight = 2.5; straight < 13.5; straight += 0.5) {
+    LaneCorridor c = StraightThenLeftTurn();
+    c.position_m = 30.0 - straight;
+    const Pose2 X_WV{c.position_m, 0.0, 0.0};
+    const std::vector<Point2> road = CentreLineAhead(c, X_WV, kReach);
+    const LaneSet sent = SampleLaneSet(c, kReach, X_WV);
+    const LaneSet three = SampleLaneSet(c, kReach, X_WV, plain);
+    ASSERT_TRUE(sent.own && three.own) << straight;
+    EXPECT_FALSE(three.own->straight_to_middle) << straight;
+    EXPECT_LE(deviation(sent, road), deviation(three, road) + 1e-12) << straight;
+    if (sent.own->straight_to_middle) {
+      ++to_the_straights_end;
+      EXPECT_NEAR(sent.own->left.points[1].x, straight, 0.5) << straight;
+      EXPECT_LT(deviation(sent, road), deviation(three, road)) << straight;
+    } else {
+      ++plain_kept;
+      EXPECT_EQ(sent.own->left.points[1].x, three.own->left.points[1].x) << straight;
+    }
+    // Too fast to steer into the turn before the straight ends: the plain samples.
+    c.speed_mps = (straight + 2.0) / kSteerLeadS;
+    const LaneSet fast = SampleLaneSet(c, kReach, X_WV);
+    ASSERT_TRUE(fast.own) << straight;
+    EXPECT_FALSE(fast.own->straight_to_middle) << straight;
+  }
+  EXPECT_GT(to_the_straights_end, 0);
+  EXPECT_GT(plain_kept, 0);
+  EXPECT_TRUE(LaneSamplingFor(Params{}).straight_by_fit);
+  EXPECT_FALSE(LaneSamplingFor(ParamsPreset("paper-literal")).straight_by_fit);
+  Params off;
+  off.straight_before_turn_by_fit = false;
+  EXPECT_FALSE(LaneSamplingFor(off).straight_by_fit);
+  off = Params{};
+  off.straight_before_turn = false;  // the estimator would ignore the mark
+  EXPECT_FALSE(LaneSamplingFor(off).straight_by_fit);
 }
 
 TEST(LaneCorridor, LaneYawRateFollowsTheLaneNotThePast) {
