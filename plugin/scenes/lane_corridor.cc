@@ -63,15 +63,22 @@ double StraightFrom(const std::vector<Point2>& line, double s0, double heading, 
   return straight;
 }
 
-}  // namespace
-
-double StraightBeforeTurn(const LaneCorridor& c, double reach_m) {
+// How far the centre line runs straight from the vehicle where it turns by at least
+// kStraightThenTurnMinRad within the reach and leaves kMinTurnM of it to the turn; 0 elsewhere.
+double StraightIntoTurn(const LaneCorridor& c, double reach_m) {
   double start_heading = 0.0, end_heading = 0.0;
   PointAlong(c.centre, c.position_m, &start_heading);
   PointAlong(c.centre, c.position_m + reach_m, &end_heading);
   if (std::fabs(WrapAngle(end_heading - start_heading)) < kStraightThenTurnMinRad) return 0.0;
   const double straight = StraightFrom(c.centre, c.position_m, start_heading, reach_m);
-  return straight >= kMinStraightM && straight <= reach_m - kMinTurnM ? straight : 0.0;
+  return straight <= reach_m - kMinTurnM ? straight : 0.0;
+}
+
+}  // namespace
+
+double StraightBeforeTurn(const LaneCorridor& c, double reach_m) {
+  const double straight = StraightIntoTurn(c, reach_m);
+  return straight >= kMinStraightM ? straight : 0.0;
 }
 
 std::vector<Point2> CentreLineAhead(const LaneCorridor& c, const Pose2& X_WV, double reach_m) {
@@ -249,14 +256,9 @@ std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const P
 // StraightBeforeTurn (kMinChosenStraightM to kMinStraightM, and kSteerLeadS of travel) and leads
 // into a turn within the reach; 0 where none.
 double ShortStraightBeforeTurn(const LaneCorridor& c, double reach_m) {
-  double start_heading = 0.0, end_heading = 0.0;
-  PointAlong(c.centre, c.position_m, &start_heading);
-  PointAlong(c.centre, c.position_m + reach_m, &end_heading);
-  if (std::fabs(WrapAngle(end_heading - start_heading)) < kStraightThenTurnMinRad) return 0.0;
-  const double straight = StraightFrom(c.centre, c.position_m, start_heading, reach_m);
+  const double straight = StraightIntoTurn(c, reach_m);
   const double least = std::fmax(kMinChosenStraightM, kSteerLeadS * c.speed_mps);
-  return straight >= least && straight < kMinStraightM && straight <= reach_m - kMinTurnM ? straight
-                                                                                          : 0.0;
+  return straight >= least && straight < kMinStraightM ? straight : 0.0;
 }
 
 // The own lane's fitted centre's largest distance from `centre` (LaneCentreDeviation, in the
