@@ -37,6 +37,10 @@ struct ClosedLoopConfig {
   bool no_steer{false};          ///< --no-steer: follow only routes that keep their lane
   /** The escape routes' braking model (Params::latency_s, jerk_mps3). */
   BrakeModel brake;
+  /** Control is handed back only when the scene re-estimated with the ego as SUMO would drive
+   *  it from there (its hand-back ramp's acceleration) is below the release threshold
+   *  (ClosedLoop::HandBackRisk); --no-hand-back-check: the estimate under our braking only. */
+  bool hand_back_check{true};
 };
 
 struct ActConfig {

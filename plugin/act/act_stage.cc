@@ -38,11 +38,17 @@ std::string ActName(Act act) {
   return "?";
 }
 
-ActStage::ActStage(const ActConfig& config, SumoWorld* world, double step_s)
+ActStage::ActStage(const ActConfig& config, SumoWorld* world, double step_s,
+                   std::function<Result(const Scene&)> estimate)
     : config_(config),
       world_(world),
       episodes_(config.warning),
-      closed_loop_(config.closed_loop, world, step_s) {}
+      closed_loop_(config.closed_loop, world, step_s,
+                   estimate
+                       ? ClosedLoop::SceneRisk([estimate, on = config.warn_on](const Scene& scene) {
+                           return WarnValue(on, estimate(scene));
+                         })
+                       : ClosedLoop::SceneRisk{}) {}
 
 void ActStage::Leaving(const Observation& obs, ActOutcome* out) {
   for (const EgoEvent& e : obs.ego_events) {

@@ -4,6 +4,7 @@
 // "criticality", the ego red while warning), and under --act brake the closed loop
 // (closed_loop.h). An ego that arrives, vanishes or starts a teleport ends its episode and its
 // engagement. Every estimated ego gets its row of the step.
+#include <functional>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -30,7 +31,10 @@ struct PublishTo {
 
 class ActStage {
  public:
-  ActStage(const ActConfig& config, SumoWorld* world, double step_s);
+  /** `estimate`: the estimator, for the closed loop's hand-back check (ClosedLoop::HandBackRisk;
+   *  empty: no check). */
+  ActStage(const ActConfig& config, SumoWorld* world, double step_s,
+           std::function<Result(const Scene&)> estimate = {});
   ActOutcome Run(const Observation& obs, const SceneBatch& batch,
                  const std::vector<Result>& results, const PublishTo& publish = {});
   /** Egos whose warning episode is open (to close them when the run ends). */

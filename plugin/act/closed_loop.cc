@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
 
 namespace criticality::plugin {
 namespace {
@@ -20,8 +21,9 @@ std::string Fixed(double x) {
 
 }  // namespace
 
-ClosedLoop::ClosedLoop(const ClosedLoopConfig& config, SumoWorld* world, double step_s)
-    : config_(config), world_(world), dt_(step_s) {
+ClosedLoop::ClosedLoop(const ClosedLoopConfig& config, SumoWorld* world, double step_s,
+                       SceneRisk hand_back_risk)
+    : config_(config), hand_back_risk_(std::move(hand_back_risk)), world_(world), dt_(step_s) {
   AvoidancePolicy check(config_.policy);  // throws for a config that cannot work
 }
 
@@ -70,7 +72,7 @@ void ClosedLoop::Step(double t, const ObjectSnapshot& ego, const Scene& scene, c
   n.result = &r;
   n.p = p;
   n.control = world_->ReadControl(ego.id);
-  switch (s.policy.Step(t, p, MayRelease(n, s))) {
+  switch (s.policy.Step(t, p, MayRelease(n, &s))) {
     case AvoidanceDecision::kIdle:  // only while handing back
       if (HandBack(ego.id, n.control, n.v())) {
         s.phase = Phase::kIdle;
@@ -90,18 +92,39 @@ void ClosedLoop::Step(double t, const ObjectSnapshot& ego, const Scene& scene, c
   }
 }
 
-bool ClosedLoop::MayRelease(const Now& n, const Engagement& s) const {
+bool ClosedLoop::MayRelease(const Now& n, Engagement* s) const {
   // The release waits, unless the engagement's lane change is done (the old lane's danger is
   // gone), while every escape route as safe as the best one that the closed loop can execute
   // brakes (p, computed with the ego braking, says little about handing back), and at a
   // standstill while SUMO's own choice is a speed the scenario forces (its driver would drive
-  // on into what stopped it: an emergency brake holds the vehicle then).
+  // on into what stopped it: an emergency brake holds the vehicle then). Where the release
+  // could come (p below its threshold), it also waits while handing back would be critical
+  // again (HandBackRisk at or above the release threshold).
   const VehicleControl& c = n.control;
-  const bool changed_lane = s.lane_change == LaneChange::kDone;
+  const bool changed_lane = s->lane_change == LaneChange::kDone;
   const bool still_braking = !changed_lane && !AnyNonBrakingRoute(n.result->escape_routes, c);
-  const bool held_stopped = s.speed_in_force && n.v() < kStandstill && c.forced &&
+  const bool held_stopped = s->speed_in_force && n.v() < kStandstill && c.forced &&
                             c.own_speed_mps > n.v() + c.accel_mps2 * dt_ + kJumpMargin;
-  return !still_braking && !held_stopped;
+  if (still_braking || held_stopped) return false;
+  if (!config_.hand_back_check || !hand_back_risk_ || !s->speed_in_force ||
+      n.p >= config_.policy.release_threshold)
+    return true;
+  s->hand_back_p = HandBackRisk(n);
+  return s->hand_back_p < config_.policy.release_threshold;
+}
+
+double ClosedLoop::HandBackRisk(const Now& n) const {
+  // SUMO's own choice of speed (its model, or the speed the scenario forces), reached no
+  // faster than the hand-back ramp.
+  const VehicleControl& c = n.control;
+  const double lowest = std::max(0.0, n.v() - c.emergency_decel_mps2 * dt_);
+  const double next = std::max(lowest, std::min(c.own_speed_mps, HandBackSpeed(c, n.v())));
+  const double accel = (next - n.v()) / dt_;
+  Scene handed_back = *n.scene;
+  // What the driver's expected acceleration says (a leader, a stop line) still holds where it
+  // asks for less (ObjectState::expected_accel_mps2).
+  handed_back.ego.state.accel_mps2 = accel;
+  return hand_back_risk_(handed_back);
 }
 
 void ClosedLoop::Engage(Engagement* s) const {
@@ -152,6 +175,12 @@ void ClosedLoop::Release(const Now& n, Engagement* s, std::vector<ActionEvent>* 
     }
   }
   if (s->lane_change == LaneChange::kPending) a.detail += "; the pending lane change dropped";
+  if (s->hand_back_p >= 0.0) {
+    char b[64];
+    std::snprintf(b, sizeof b, "; estimate if handed back %.3f", s->hand_back_p);
+    a.detail += b;
+  }
+  s->hand_back_p = -1.0;
   if (acted) actions->push_back(a);
   s->braking_started = false;
   s->lane_change = LaneChange::kNone;

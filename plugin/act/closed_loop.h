@@ -17,6 +17,7 @@
 //    done (changeLane sent; with the sublane model at once). Decided once per engagement.
 // An ego that leaves ends its engagement; one whose speed was commanded when its teleport
 // started gets its speed handed back when the teleport ends (SUMO keeps a commanded speed).
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -38,7 +39,12 @@ class ClosedLoop {
   enum class Phase { kIdle, kEngaged, kHandingBack };
   enum class LaneChange { kNone, kPending, kDone };
 
-  ClosedLoop(const ClosedLoopConfig& config, SumoWorld* world, double step_s);
+  /** The --warn-on estimate of a scene (for ClosedLoopConfig::hand_back_check). */
+  using SceneRisk = std::function<double(const Scene&)>;
+
+  /** `hand_back_risk` empty: no hand-back check (as with hand_back_check false). */
+  ClosedLoop(const ClosedLoopConfig& config, SumoWorld* world, double step_s,
+             SceneRisk hand_back_risk = {});
   /** One step for `ego`: `p` is the --warn-on estimate of `r`, the result of `scene`. */
   void Step(double t, const ObjectSnapshot& ego, const Scene& scene, const Result& r, double p,
             std::vector<ActionEvent>* actions);
@@ -68,6 +74,7 @@ class ClosedLoop {
     double previous_accel{0.0};   ///< the acceleration commanded at the previous step
     LaneChange lane_change{LaneChange::kNone};
     PendingChange pending;
+    double hand_back_p{-1.0};  ///< the last HandBackRisk of this engagement; -1: none yet
   };
   // What one step of an engaged ego sees.
   struct Now {
@@ -82,8 +89,14 @@ class ClosedLoop {
 
   Engagement& StateOf(const std::string& ego);
   ActionEvent Row(const Now& n, const std::string& kind, const EscapeRoute* route) const;
-  /** Whether the policy may hand control back now (plugin/README.md, Closed loop). */
-  bool MayRelease(const Now& n, const Engagement& s) const;
+  /** Whether the policy may hand control back now (plugin/README.md, Closed loop); keeps the
+   *  hand-back check's estimate in s->hand_back_p. */
+  bool MayRelease(const Now& n, Engagement* s) const;
+  /** The --warn-on estimate of the scene with the ego as SUMO would drive it once handed back:
+   *  its acceleration that of the hand-back ramp's next step (HandBackSpeed). While we brake the
+   * estimate reads our braking as the ego's own, so a threat that handing back would drive into
+   * again (a crossing tram) looked gone. */
+  double HandBackRisk(const Now& n) const;
   void Engage(Engagement* s) const;
   void Release(const Now& n, Engagement* s, std::vector<ActionEvent>* actions);
   /** While engaged: the route, its lane change and its speed. */
@@ -117,6 +130,7 @@ class ClosedLoop {
   static constexpr double kMitigation = 0.5;    // route collision probability: brake fully
 
   ClosedLoopConfig config_;
+  SceneRisk hand_back_risk_;
   SumoWorld* world_;
   double dt_;
   std::map<std::string, Engagement> egos_;

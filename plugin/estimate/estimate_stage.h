@@ -16,6 +16,8 @@ class EstimateStage {
       : estimator_(params, options) {}
   /** results[k] belongs to batch.scenes[k]. */
   std::vector<Result> Run(const SceneBatch& batch) { return estimator_.EstimateBatch(batch.scenes); }
+  /** One scene alone (the closed loop's hand-back check, between batches). */
+  Result One(const Scene& scene) { return estimator_.Estimate(scene); }
   const Params& params() const { return estimator_.params(); }
 
  private:

@@ -210,6 +210,7 @@ void Threshold(const char* option, double t) {
 }
 
 void Acting(const RawOptions& raw, ActConfig* act) {
+  act->closed_loop.hand_back_check = !raw.no_hand_back_check;
   if (raw.act == "none")
     act->act = Act::kNone;
   else if (raw.act == "warn")

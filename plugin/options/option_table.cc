@@ -110,7 +110,11 @@ void OptionTable::Acting(DriverOptions* o) {
       "act-release-after", Value(&p.release_after_s),
       "seconds the estimate must stay below --brake-release before control is handed back")(
       "no-steer", po::bool_switch(&o->act.closed_loop.no_steer),
-      "--act brake only brakes: follows the best escape route that keeps its lane");
+      "--act brake only brakes: follows the best escape route that keeps its lane")(
+      "no-hand-back-check", po::bool_switch(&raw.no_hand_back_check),
+      "ablation (ours): --act brake hands control back once the estimate is low; by default "
+      "it also re-estimates the scene with the ego as SUMO would drive it after the hand-back, "
+      "and waits while that is at or above --brake-release");
   all_.add(a);
 }
 

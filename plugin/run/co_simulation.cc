@@ -177,7 +177,14 @@ class CoSimulation {
     // Under --act brake the closed loop needs step k's results before SUMO's step k+1.
     sum_.pipelined = o_.run.pipeline && o_.act.act != Act::kBrake;
     if (sum_.pipelined) ahead_ = std::make_unique<EstimateAhead>(estimate_.get());
-    act_ = std::make_unique<ActStage>(o_.act, world_.get(), dt_);
+    // The closed loop's hand-back check estimates between batches: only under --act brake,
+    // which never pipelines.
+    EstimateStage* one = estimate_.get();
+    act_ = std::make_unique<ActStage>(
+        o_.act, world_.get(), dt_,
+        sum_.pipelined ? std::function<Result(const Scene&)>{}
+                       : std::function<Result(const Scene&)>(
+                             [one](const Scene& scene) { return one->One(scene); }));
     record_ = std::make_unique<RecordStage>(o_.record, db_.get());
     script_ = std::make_unique<EventScript>(o_.run.events, world_.get());
     observe_->CheckNamedEgos();

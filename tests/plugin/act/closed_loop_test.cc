@@ -125,6 +125,53 @@ TEST(ClosedLoop, OneApproachIsOneEngagementWhateverPDoesAboveTheRelease) {
   EXPECT_TRUE(f.loop.Acting("ego"));
 }
 
+// ClosedLoopConfig::hand_back_check: below the release threshold the scene is re-estimated
+// with the ego as SUMO would drive it once handed back (SUMO's own speed 20 m/s, reached at
+// the type's accel: +2.6 m/s^2 from 10 m/s), and control stays while that estimate is at or
+// above the release threshold (a crossing tram the ego would drive into again). Catches a check
+// that is ignored, one made on the scene as braked (accel unchanged), and a release row that
+// does not say what the check saw; without the check the release comes as before.
+TEST(ClosedLoop, ControlIsHandedBackOnlyWhenHandingBackIsSafe) {
+  for (const bool check : {true, false}) {
+    double handed_back_risk = 0.8;
+    std::vector<double> accels;
+    ClosedLoopConfig config = Config();
+    config.hand_back_check = check;
+    Fixture f;
+    ClosedLoop loop(config, &f.world, kDt, [&](const Scene& scene) {
+      accels.push_back(scene.ego.state.accel_mps2);
+      return handed_back_risk;
+    });
+    VehicleControl c;
+    c.own_speed_mps = 20.0;
+    c.accel_mps2 = 2.6;
+    f.world.control["ego"] = c;
+    auto step = [&](double t, double p, double accel) {
+      f.result.escape_routes = {Route(accel)};
+      loop.Step(t, f.ego, f.scene, f.result, p, &f.actions);
+    };
+    for (int k = 0; k < 4; ++k) step(0.1 * k, 0.95, -6.0);  // engaged, braking from 0.2 s
+    f.ego.state.speed_mps = 10.0;
+    f.scene.ego.state.speed_mps = 10.0;
+    f.scene.ego.state.accel_mps2 = -6.0;  // as braked
+    for (int k = 4; k < 30; ++k) step(0.1 * k, 0.1, 0.0);
+    if (!check) {
+      EXPECT_FALSE(loop.Acting("ego"));  // released at 1.0 s, as without a check
+      EXPECT_TRUE(accels.empty());
+      continue;
+    }
+    EXPECT_TRUE(loop.Acting("ego"));  // 2.6 s later, still ours: handing back is critical
+    ASSERT_FALSE(accels.empty());
+    for (const double a : accels) EXPECT_NEAR(a, 2.6, 1e-9);
+    handed_back_risk = 0.1;
+    step(3.0, 0.1, 0.0);
+    EXPECT_FALSE(loop.Acting("ego"));
+    ASSERT_EQ(f.Kinds(), (std::vector<std::string>{"brake", "release"}));
+    EXPECT_NE(f.actions.back().detail.find("estimate if handed back 0.100"), std::string::npos)
+        << f.actions.back().detail;
+  }
+}
+
 TEST(ClosedLoop, TheReleaseWaitsWhileEveryRouteAsSafeAsTheBestBrakes) {
   Fixture f;
   for (int k = 0; k < 30; ++k) f.StepAt(0.1 * k, k < 3 ? 0.95 : 0.1, {Route(-4.0)});
