@@ -141,11 +141,13 @@ namespace {
 // samples cannot be fitted in the frame the estimator will fit them in. *within_lane: false
 // when LaneSampling::centre_within_lane finds the own lane's fitted centre out of the lane.
 // `straight` > 0: the middle samples at that distance (a straight of that length, as
-// StraightBeforeTurn's) instead of StraightBeforeTurn's choice.
+// StraightBeforeTurn's) instead of StraightBeforeTurn's choice. *deviation (where given): the
+// own lane's fitted centre's LaneCentreDeviation where the check above measured it, else NaN.
 std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
                                   const LaneSampling& sampling, bool* within_lane,
-                                  double straight_m = 0.0) {
+                                  double straight_m = 0.0, double* deviation = nullptr) {
   *within_lane = true;
+  if (deviation) *deviation = std::nan("");
   const std::optional<Corner> corner =
       sampling.corners ? CornerOf(c.centre, c.position_m, c.position_m + reach_m) : std::nullopt;
   const double straight = straight_m > 0.0 ? straight_m
@@ -245,8 +247,11 @@ std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const P
   // The parabola through three samples can leave the lane between them (a short straight and
   // a sharp turn: it swings out to the other side first); then the lane is fitted over a
   // shorter reach, which follows the road where the vehicle is.
-  if (sampling.centre_within_lane)
-    *within_lane = LaneCentreDeviation(*set.own, frame, centre) <= 0.5 * c.width_m;
+  if (sampling.centre_within_lane) {
+    const double d = LaneCentreDeviation(*set.own, frame, centre);
+    *within_lane = d <= 0.5 * c.width_m;
+    if (deviation) *deviation = d;
+  }
   if (set.left && !usable(set.left)) set.left.reset();
   if (set.right && !usable(set.right)) set.right.reset();
   return set;
@@ -278,13 +283,16 @@ double OwnCentreDeviation(const LaneSet& set, const LaneSampling& sampling,
 // LaneSampling::straight_by_fit over `reach_m`: *set (and *within_lane) become the set sampled
 // with the middle samples at a short straight's end where that set is usable and either *set
 // is not (none, or out of its lane) or that set's own centre keeps closer to the road.
+// `deviation`: *set's, as SampleOver measured it (NaN: not measured).
 void ChooseStraightByFit(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
-                         const LaneSampling& sampling, std::optional<LaneSet>* set,
-                         bool* within_lane) {
+                         const LaneSampling& sampling, double deviation,
+                         std::optional<LaneSet>* set, bool* within_lane) {
   const double straight = ShortStraightBeforeTurn(c, reach_m);
   if (straight <= 0.0) return;
   bool alt_within = true;
-  std::optional<LaneSet> alt = SampleOver(c, reach_m, X_WV, sampling, &alt_within, straight);
+  double alt_deviation = std::nan("");
+  std::optional<LaneSet> alt =
+      SampleOver(c, reach_m, X_WV, sampling, &alt_within, straight, &alt_deviation);
   if (!alt) return;
   if (!*set || !*within_lane) {
     *set = std::move(alt);
@@ -292,9 +300,12 @@ void ChooseStraightByFit(const LaneCorridor& c, double reach_m, const Pose2& X_W
     return;
   }
   if (!alt_within) return;
-  const std::vector<Point2> centre = CentreLineAhead(c, X_WV, reach_m);
-  if (OwnCentreDeviation(*alt, sampling, centre) < OwnCentreDeviation(**set, sampling, centre))
-    *set = std::move(alt);
+  if (std::isnan(deviation) || std::isnan(alt_deviation)) {  // the lane-fit check is off
+    const std::vector<Point2> centre = CentreLineAhead(c, X_WV, reach_m);
+    deviation = OwnCentreDeviation(**set, sampling, centre);
+    alt_deviation = OwnCentreDeviation(*alt, sampling, centre);
+  }
+  if (alt_deviation < deviation) *set = std::move(alt);
 }
 
 }  // namespace
@@ -312,10 +323,12 @@ LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
   std::optional<LaneSet> fallback;
   auto sample = [&](double reach) -> std::optional<LaneSet> {
     bool within_lane = true;
-    std::optional<LaneSet> set = SampleOver(c, reach, X_WV, sampling, &within_lane);
+    double deviation = std::nan("");
+    std::optional<LaneSet> set =
+        SampleOver(c, reach, X_WV, sampling, &within_lane, 0.0, &deviation);
     const bool long_straight = set && set->own && set->own->straight_to_middle;
     if (sampling.straight_by_fit && !sampling.corners && !long_straight)
-      ChooseStraightByFit(c, reach, X_WV, sampling, &set, &within_lane);
+      ChooseStraightByFit(c, reach, X_WV, sampling, deviation, &set, &within_lane);
     if (set && !within_lane) {
       if (!fallback) fallback = set;
       return std::nullopt;
