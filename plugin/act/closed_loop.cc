@@ -118,7 +118,7 @@ double ClosedLoop::HandBackRisk(const Now& n) const {
   // faster than the hand-back ramp.
   const VehicleControl& c = n.control;
   const double lowest = std::max(0.0, n.v() - c.emergency_decel_mps2 * dt_);
-  const double next = std::max(lowest, std::min(c.own_speed_mps, HandBackSpeed(c, n.v())));
+  const double next = std::max(lowest, std::min(c.resume_speed_mps, HandBackSpeed(c, n.v())));
   const double accel = (next - n.v()) / dt_;
   Scene handed_back = *n.scene;
   // What the driver's expected acceleration says (a leader, a stop line) still holds where it

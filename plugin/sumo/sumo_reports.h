@@ -92,6 +92,13 @@ struct VehicleControl {
    *  TraCI (getSpeedWithoutTraCI: its car following, a route's stop; one step old). */
   double own_speed_mps{0.0};
   bool forced{false};  ///< own_speed_mps is a speed the scenario forces
+  /** The fastest SUMO's own choice of speed could be once handed back: own_speed_mps, except
+   *  while a speed of the closed loop is in force and the scenario forces none. SUMO 1.15's
+   *  getSpeedWithoutTraCI then reports the speed driven, and this is the type's acceleration up
+   *  to its allowed speed (getAllowedSpeed). Not capped by follow_speed_mps: a stopped car
+   *  whose getFollowSpeed behind its getLeader was 0 drove off at 2.4 m/s^2 once handed back
+   *  (bench/RESULTS.md, sixteenth stop). */
+  double resume_speed_mps{0.0};
   /** The speed SUMO's car following gives now behind the vehicle's leader (getFollowSpeed
    *  with getLeader's gap, within its braking distance at the forced speed plus 50 m),
    *  whatever the scenario forces; +inf without a leader there. */

@@ -246,6 +246,7 @@ class FakeSumoWorld final : public SumoWorld {
     VehicleControl c;
     const SumoObject* o = Find(v);
     c.own_speed_mps = o ? o->speed_mps : 0.0;
+    c.resume_speed_mps = c.own_speed_mps;
     c.lane = o ? o->lane : "";
     c.lane_index = o ? o->lane_index : 0;
     c.lanes = (o && !o->lane.empty()) ? lane_count_.at(lanes_.at(o->lane).edge) : 1;

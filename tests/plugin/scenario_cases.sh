@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SUMO-level tests of sumo-criticality (ctest label sumo), one case per ctest entry:
 #   scenario_cases.sh DRIVER BENCH SCENARIOS_DIR WORK_DIR CASE
-# Cases: collision:NAME, free:NAME, brake, conversion_replay, connect, all_vehicles,
+# Cases: collision:NAME, free:NAME, brake, brake_hold, conversion_replay, connect, all_vehicles,
 # consistent_reads, disk_full, sumo_dies, bad_input, lifecycle_arrive, lifecycle_teleport,
 # collision_actions, reader, signals, small_options, counter_traffic, riding_person,
 # city_one_ego, city_sublane_all, mixed_fleet:NETWORK (level_crossing, tram_street, trucks,
@@ -86,6 +86,20 @@ case $case in
     # action a brake).
     check "brake: control is handed back (release recorded) or the run ends braking" \
       test "$(q "$brake_db" "select (select count(*) from actions where kind='release' and time_s >= (select max(time_s) from actions where kind='brake')) + (select count(*) from (select kind from actions order by time_s desc, rowid desc limit 1) where kind='brake')")" -ge 1
+    ;;
+  brake_hold)
+    # rear_approach: the follower runs into the ego's back (11.1 s) and on through it (SUMO's
+    # collision.action warn), after which SUMO's own driver would drive the stopped ego on into
+    # the jam ahead. The closed loop brakes once and keeps the ego stopped: handing back is
+    # judged with SUMO's own choice of speed (its type's acceleration, as SUMO reports only the
+    # speed driven while ours is in force), so there is no brake/release cycling for it.
+    db=$work/brake_hold.sqlite
+    run rear_approach "$db" --act brake >/dev/null
+    sqlite3 "$db" "select time_s, kind, round(p_collision, 3) from actions"
+    check "brake_hold: the closed loop brakes for the jam after the collision" \
+      test "$(q "$db" "select count(*) from actions where kind='brake' and time_s > 11.1")" -ge 1
+    check "brake_hold: one engagement, no brake after a release" \
+      test "$(q "$db" "select count(*) from actions a where kind='brake' and exists (select 1 from actions r where r.kind='release' and r.time_s < a.time_s)")" -eq 0
     ;;
   conversion_replay)
     db=$work/conversion.sqlite scenes=$work/scenes

@@ -126,11 +126,13 @@ TEST(ClosedLoop, OneApproachIsOneEngagementWhateverPDoesAboveTheRelease) {
 }
 
 // ClosedLoopConfig::hand_back_check: below the release threshold the scene is re-estimated
-// with the ego as SUMO would drive it once handed back (SUMO's own speed 20 m/s, reached at
+// with the ego as SUMO would drive it once handed back (SUMO's resume speed 20 m/s, reached at
 // the type's accel: +2.6 m/s^2 from 10 m/s), and control stays while that estimate is at or
 // above the release threshold (a crossing tram the ego would drive into again). Catches a check
-// that is ignored, one made on the scene as braked (accel unchanged), and a release row that
-// does not say what the check saw; without the check the release comes as before.
+// that is ignored, one made on the scene as braked (accel unchanged), one that takes SUMO's
+// own speed (which SUMO 1.15 reports as the speed driven while ours is in force: 10 m/s here)
+// for its choice, and a release row that does not say what the check saw; without the check
+// the release comes as before.
 TEST(ClosedLoop, ControlIsHandedBackOnlyWhenHandingBackIsSafe) {
   for (const bool check : {true, false}) {
     double handed_back_risk = 0.8;
@@ -143,7 +145,8 @@ TEST(ClosedLoop, ControlIsHandedBackOnlyWhenHandingBackIsSafe) {
       return handed_back_risk;
     });
     VehicleControl c;
-    c.own_speed_mps = 20.0;
+    c.own_speed_mps = 10.0;
+    c.resume_speed_mps = 20.0;
     c.accel_mps2 = 2.6;
     f.world.control["ego"] = c;
     auto step = [&](double t, double p, double accel) {
@@ -188,6 +191,7 @@ void EngageAndReleaseUnderAForcedSpeed(
   VehicleControl forced;
   forced.forced = true;
   forced.own_speed_mps = forced_mps;
+  forced.resume_speed_mps = forced_mps;
   forced.follow_speed_mps = follow_mps;
   forced.accel_mps2 = 2.6;
   forced.lane = "E_0";
