@@ -190,6 +190,8 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_heading_hold) o->scenes.heading_hold = false;
   if (raw.no_way_heading) o->scenes.way_heading = false;
   if (raw.no_lane_heading_yaw_rate) o->scenes.lane_heading_yaw_rate = false;
+  if (raw.lane_change_target) o->scenes.lane_change_target = true;
+  if (raw.no_lane_change_yaw_rate) o->scenes.lane_change_yaw_rate = false;
   if (raw.junction_shapes && raw.no_junction_shapes)
     Bad("--junction-shapes and --no-junction-shapes: choose one (the first is the default)");
   if (raw.no_junction_shapes) o->scenes.junction_shapes = false;

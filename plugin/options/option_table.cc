@@ -195,6 +195,17 @@ void OptionTable::ModelChoices() {
       "default a vehicle whose heading is SUMO's along its lanes (from its back to its front "
       "on them) turns as that heading turns around its front at its speed (plugin/README.md, "
       "\"Yaw rate\")")(
+      "lane-change-target", po::bool_switch(&raw.lane_change_target),
+      "experimental (ours, off by default): a vehicle seen changing lanes over time "
+      "(lanechange.duration > 0, the sublane model: its blinker, its front off its lane's "
+      "centre and its heading turned that way) is taken as on the lane it moves into; by "
+      "default its own lane until SUMO moves it over. More false alarms on held-out sublane "
+      "grids (plugin/README.md, \"Lane changes\")")(
+      "no-lane-change-yaw-rate", po::bool_switch(&raw.no_lane_change_yaw_rate),
+      "ablation (ours): with continuous lane changes a vehicle SUMO moves sideways along its "
+      "lane turns as its heading changed since the last step; by default at its lane's yaw "
+      "rate, as SUMO's heading jumps when such a move begins or ends (plugin/README.md, "
+      "\"Lane changes\")")(
       "no-junction-shapes", po::bool_switch(&raw.no_junction_shapes),
       "ablation (ours): draw the lanes ahead through a junction as the straight chord from the "
       "lane's end to the next lane's start (by default along the junction's internal lanes, "

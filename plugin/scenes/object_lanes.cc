@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "criticality/geometry.h"
 #include "plugin/network/polyline.h"
 
 namespace criticality::plugin {
@@ -74,9 +75,51 @@ void Neighbours(const VehicleOnLane& v, const std::string& reference, RoadNetwor
 
 }  // namespace
 
-ObjectLanes LanesOf(const VehicleOnLane& v, const SceneConfig& config, double step_s,
+double ShapePosition(const LaneInfo& lane, double lane_position_m) {
+  // SUMO's lane length and the shape's differ where netconvert smoothed the lane.
+  return lane.length_m > 0.0 ? lane_position_m * PolylineLength(lane.shape) / lane.length_m
+                             : lane_position_m;
+}
+
+std::string LaneChangeTarget(const VehicleOnLane& v, RoadNetwork* network) {
+  if (v.blinker == Blinker::kNone || v.lane.empty() || IsInternal(v.lane)) return "";
+  const LaneInfo& own = network->Lane(v.lane);
+  const int side = v.blinker == Blinker::kLeft ? 1 : -1;
+  const int index = v.lane_index + side;
+  if (index < 0 || index >= network->LaneCount(own.edge)) return "";
+  const std::string target = own.edge + "_" + std::to_string(index);
+  if (!Allows(*network, target, v.vehicle_class)) return "";
+  double at_front = 0.0, at_centre = 0.0;
+  const Point2 on = PointAlong(own.shape, ShapePosition(own, v.lane_position_m), &at_front);
+  PointAlong(own.shape, ShapePosition(own, std::fmax(0.0, v.lane_position_m - 0.5 * v.length_m)),
+             &at_centre);
+  const double left_offset =
+      std::cos(at_front) * (v.front.y - on.y) - std::sin(at_front) * (v.front.x - on.x);
+  const double left_turn = WrapAngle(v.centre.yaw - at_centre);
+  if (side * left_offset < kLaneChangeMinOffsetM || side * left_turn < kLaneChangeMinAngleRad)
+    return "";
+  return target;
+}
+
+ObjectLanes LanesOf(const VehicleOnLane& seen, const SceneConfig& config, double step_s,
                     RoadNetwork* network, CounterLanes* counter_lanes) {
   ObjectLanes out;
+  if (!seen.lane.empty() && !IsInternal(seen.lane) && seen.lane_position_m < seen.length_m) {
+    const LaneInfo& own = network->Lane(seen.lane);
+    double yaw = 0.0;
+    PointAlong(own.shape, ShapePosition(own, 0.5 * seen.lane_position_m), &yaw);
+    out.lane_start_yaw_rad = yaw;
+  }
+  VehicleOnLane v = seen;
+  if (config.lane_change_target) {
+    const std::string target = LaneChangeTarget(seen, network);
+    if (!target.empty()) {
+      const LaneInfo& lane = network->Lane(target);
+      v.lane = target;
+      v.lane_index = lane.index;
+      v.lane_position_m = std::fmin(seen.lane_position_m, lane.length_m);
+    }
+  }
   LaneCorridor c;
   c.centre = network->Lane(v.lane).shape;
   c.position_m = v.lane_position_m - 0.5 * v.length_m;

@@ -25,6 +25,7 @@ namespace criticality::plugin {
 /** Where a vehicle is, as SUMO reports it, and how it is placed in the estimator's frame. */
 struct VehicleOnLane {
   Pose2 centre;  ///< centre of gravity, math yaw
+  Point2 front;  ///< the middle of its front bumper (SUMO's position)
   double speed_mps{0.0};
   double length_m{4.5};
   std::string lane;
@@ -41,6 +42,25 @@ struct VehicleOnLane {
    *  junction_shapes, the default); false: the chord from the lane's end to the next lane's start. */
   bool junction_shapes{true};
 };
+
+/** SceneConfig::lane_change_target: the lane of the same edge a vehicle is seen moving into
+ *  (SUMO moves it there over time: lanechange.duration > 0 or the sublane model), or "" when
+ *  it is not changing lanes. Changing lanes: its blinker points to that lane, which its class
+ *  may use, and its front is at least kLaneChangeMinOffsetM off its lane's centre line that
+ *  way, its heading turned that way from the lane's direction at its centre by at least
+ *  kLaneChangeMinAngleRad. Past the middle of the change SUMO puts it on the new lane, where
+ *  its front is off that lane's centre the other way: then "". Reads the blinker, the body's
+ *  pose and the lane geometry, which sensors and a map give. */
+std::string LaneChangeTarget(const VehicleOnLane& v, RoadNetwork* network);
+
+/** See LaneChangeTarget. Project choices (SUMO drives a vehicle exactly on its lane's centre
+ *  line unless it is changing lanes; its continuous lane change turns the body by
+ *  atan(offset / half its length): a 12 m bus is 0.16 m and 1.5 degrees out after 0.1 s). */
+inline constexpr double kLaneChangeMinOffsetM = 0.1;
+inline constexpr double kLaneChangeMinAngleRad = 0.0175;  // 1 degree
+
+/** `lane_position_m` (SUMO's, along its lane length) as a distance along the lane's shape. */
+double ShapePosition(const LaneInfo& lane, double lane_position_m);
 
 /** The lane the vehicle drives onto after `lane`: along its route (NextLaneOnRoute, advancing
  *  *route_index), or with observable_only as it is seen to go (NextLaneSeen). */
@@ -65,6 +85,13 @@ struct ObjectLanes {
    *  the lanes (HeadingAlong, over kLaneHeadingWindowS of its speed each way of its front, at
    *  least 1 m); nullopt otherwise or where the way behind is not known. */
   std::optional<LaneHeading> lane_heading;
+  /** Where the vehicle's back is still on the lanes behind its normal lane: that lane's
+   *  direction (math yaw) from its start to the front (at the middle between them); nullopt
+   *  otherwise. SUMO measures a vehicle's heading from its back on the lanes behind, except
+   *  while it moves the vehicle sideways (continuous lane changes): from the lane's start then
+   *  (MSVehicle::getBackPosition), this direction turned by the sideways motion
+   *  (ObjectReader::LaneYawRateOr). */
+  std::optional<double> lane_start_yaw_rad;
 };
 
 /** See ObjectLanes::lane_heading: the heading's change over the half second around now (a
@@ -80,7 +107,9 @@ inline constexpr double kLaneHeadingWindowS = 0.25;
 void FollowRoute(const VehicleOnLane& v, double reach, RoadNetwork* network, LaneCorridor* c,
                  std::string* beyond_junction, std::optional<double>* route_end);
 
-/** The vehicle's lanes, route end and lane yaw rate; `step_s` is the simulation's step. */
+/** The vehicle's lanes, route end and lane yaw rate; `step_s` is the simulation's step. With
+ *  SceneConfig::lane_change_target, a vehicle changing lanes (LaneChangeTarget) is taken as on
+ *  the lane it moves into: its corridor and neighbours are that lane's. */
 ObjectLanes LanesOf(const VehicleOnLane& v, const SceneConfig& config, double step_s,
                     RoadNetwork* network, CounterLanes* counter_lanes);
 

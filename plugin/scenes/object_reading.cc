@@ -228,6 +228,7 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   if (!Finite(s.state)) return s;
   VehicleOnLane v;
   v.centre = c;
+  v.front = Point2{o.x_m, o.y_m};
   v.speed_mps = s.state.speed_mps;
   v.length_m = s.length_m;
   v.lane = o.lane;
@@ -310,6 +311,12 @@ double ObjectReader::LaneYawRateOr(double measured, const ObjectLanes& lanes, do
   if (lanes.lane_heading && !held &&
       std::fabs(WrapAngle(heading - lanes.lane_heading->yaw_rad)) < kFollowsLaneToleranceRad)
     return lanes.lane_heading->yaw_rate_radps;
+  // SceneConfig::lane_change_yaw_rate: moved sideways with its back behind its lane's start,
+  // where SUMO's heading jumps as the move begins or ends.
+  if (config_.lane_change_yaw_rate && !config_.instant_lane_changes && !held &&
+      lanes.lane_start_yaw_rad &&
+      std::fabs(WrapAngle(heading - *lanes.lane_start_yaw_rad)) <= kSidewaysMaxAngleRad)
+    return lanes.lane_yaw_rate_radps;
   return measured;
 }
 

@@ -57,7 +57,10 @@ class ObjectReader {
   /** The yaw rate a vehicle is read with, `measured` its heading change since the last step:
    *  with steps longer than kLongStepS its lane's; with shorter ones, where it follows its
    *  lanes (its `heading` SUMO's along them, not `held`), the turn of that heading
-   *  (SceneConfig::lane_heading_yaw_rate); else `measured`. */
+   *  (SceneConfig::lane_heading_yaw_rate); with continuous lane changes, where SUMO moves it
+   *  sideways just past a junction (its back behind its normal lane's start, its heading
+   *  within kSidewaysMaxAngleRad of the lane's), its lane's
+   *  (SceneConfig::lane_change_yaw_rate); else `measured`. */
   double LaneYawRateOr(double measured, const ObjectLanes& lanes, double heading, bool held) const;
   /** Plausible states: a yaw rate within grip (the lane's where SUMO's heading jumped), an
    *  acceleration within the type's limits; counted unless `counted` (the read's heading was

@@ -97,6 +97,25 @@ struct SceneConfig {
    *  --no-lane-heading-yaw-rate takes the last step's change. Lane geometry and the body's
    *  length, which a map and sensors give. */
   bool lane_heading_yaw_rate{true};
+  /** Experimental, off by default (--lane-change-target): a vehicle seen changing lanes (its
+   *  blinker, its front off its lane's centre and its heading turned that way:
+   *  LaneChangeTarget in object_lanes.h) is taken as on the lane it moves into, which SUMO
+   *  gives it only past the middle of the change; its most likely path then leads there. On
+   *  held-out sublane grids it warned of more changes that SUMO then broke off than it helped
+   *  (bench/RESULTS.md, sixteenth stop). Blinker, pose and lane geometry, which sensors and a
+   *  map give. */
+  bool lane_change_target{false};
+  /** With continuous lane changes (not instant_lane_changes): a vehicle whose back is still on
+   *  the lanes behind its normal lane, and whose heading does not follow its lanes
+   *  (lane_heading_yaw_rate) but lies within kSidewaysMaxAngleRad of that lane's direction,
+   *  is being moved sideways by SUMO, and takes its lane's yaw rate, not its heading's change
+   *  since the last step. SUMO then measures its heading from the lane's start, not from its
+   *  back (MSVehicle::getBackPosition), so the heading jumps when such a move begins or ends:
+   *  a 9 degree jump in 0.1 s read as a turn at 1.6 rad/s into the counter lane
+   *  (bench/RESULTS.md, sixteenth stop). Once its back is on the lane too, its heading's
+   *  change is the sideways motion's. --no-lane-change-yaw-rate: the heading's change
+   *  everywhere. Heading and lane geometry, which sensors and a map give. */
+  bool lane_change_yaw_rate{true};
   /** SUMO moves a vehicle into the next lane within one step (no sublane model,
    *  lanechange.duration 0, SUMO's defaults); set by the driver from SUMO's options. */
   bool instant_lane_changes{true};
@@ -123,5 +142,10 @@ inline constexpr double kLongStepS = 0.25;
  *  netgenerate rand net at 0.1 s steps, 40 s, every vehicle: 98 % of 10,344 reads within
  *  0.01 degrees, 19 between 0.5 and 5 or more (a sublane change, a held heading). */
 inline constexpr double kFollowsLaneToleranceRad = 0.5 * 3.14159265358979323846 / 180.0;
+
+/** SceneConfig::lane_change_yaw_rate: the most a heading moved sideways along its lane is taken
+ *  to be turned from the lane's direction (SUMO turns it by the sideways speed over the speed:
+ *  1 m/s sideways at 2.7 m/s is 20 degrees). */
+inline constexpr double kSidewaysMaxAngleRad = 20.0 * 3.14159265358979323846 / 180.0;
 
 }  // namespace criticality::plugin

@@ -112,7 +112,7 @@ TEST(DriverOptions, ScenarioMetadata) {
                std::invalid_argument);
 }
 
-TEST(DriverOptions, LaneHeadingYawRateIsOnUnlessSwitchedOff) {
+TEST(DriverOptions, LaneHeadingAndLaneChangeRulesAreOnUnlessSwitchedOff) {
   const auto parse = [](std::vector<const char*> extra) {
     std::vector<const char*> args = {"--connect", "h:1", "--ego", "e", "--output", "x"};
     args.insert(args.end(), extra.begin(), extra.end());
@@ -121,6 +121,10 @@ TEST(DriverOptions, LaneHeadingYawRateIsOnUnlessSwitchedOff) {
   const SceneConfig plain = parse({});
   EXPECT_TRUE(plain.lane_heading_yaw_rate);
   EXPECT_FALSE(parse({"--no-lane-heading-yaw-rate"}).lane_heading_yaw_rate);
+  EXPECT_FALSE(plain.lane_change_target);  // experimental: off unless asked for
+  EXPECT_TRUE(parse({"--lane-change-target"}).lane_change_target);
+  EXPECT_TRUE(plain.lane_change_yaw_rate);
+  EXPECT_FALSE(parse({"--no-lane-change-yaw-rate"}).lane_change_yaw_rate);
 }
 
 TEST(DriverOptions, ThreadsBesideSumo) {

@@ -1,6 +1,7 @@
 // The corridor ahead of a vehicle (plugin/scenes/object_lanes.h, FollowRoute): through a junction
 // turn it follows both parts of the junction's internal lane with junction_shapes, and jumps
-// along the chord between the lanes without.
+// along the chord between the lanes without. A vehicle seen changing lanes (LaneChangeTarget)
+// has the lane it moves into as its own.
 #include "plugin/scenes/object_lanes.h"
 
 #include <gtest/gtest.h>
@@ -65,6 +66,72 @@ TEST(ObjectLanes, WithoutJunctionShapesTheCorridorJumpsAlongTheChord) {
   // From N's end (0, 0) straight to S's start (-4, 0): nothing north of the junction.
   EXPECT_NEAR(NorthMost(c), 0.0, 1e-9);
   EXPECT_NEAR(c.centre.back().x, -4.0, 1e-9);
+}
+
+// A 12 m bus on the right lane of a two-lane edge running east (E_0 centre y = -1.6, E_1 centre
+// y = +1.6), its front `offset_m` left of E_0's centre and its heading `turn_rad` left of east,
+// as SUMO's continuous lane change places it.
+VehicleOnLane ChangingBus(double offset_m, double turn_rad, Blinker blinker) {
+  VehicleOnLane v;
+  v.lane = "E_0";
+  v.lane_index = 0;
+  v.lane_position_m = 50.0;
+  v.length_m = 12.0;
+  v.speed_mps = 2.0;
+  v.route = {"E"};
+  v.vehicle_class = "bus";
+  v.blinker = blinker;
+  v.front = Point2{50.0, -1.6 + offset_m};
+  v.centre = Pose2{50.0 - 6.0 * std::cos(turn_rad), v.front.y - 6.0 * std::sin(turn_rad), turn_rad};
+  return v;
+}
+
+FakeSumoWorld TwoLanesEast() {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 200, 0, 2);
+  return w;
+}
+
+TEST(ObjectLanes, AVehicleSeenChangingLanesMovesIntoTheLaneItsBlinkerShows) {
+  FakeSumoWorld w = TwoLanesEast();
+  EXPECT_EQ(LaneChangeTarget(ChangingBus(0.16, 0.026, Blinker::kLeft), &w), "E_1");
+  // Not changing: no blinker, the blinker the other way (and no lane there), the front on the
+  // centre line (SUMO's default instant lane changes, or a blinker for a turn ahead), the
+  // heading along the lane, or past the middle of the change (SUMO has put it on E_1, its
+  // front still right of E_1's centre).
+  EXPECT_EQ(LaneChangeTarget(ChangingBus(0.16, 0.026, Blinker::kNone), &w), "");
+  EXPECT_EQ(LaneChangeTarget(ChangingBus(0.16, 0.026, Blinker::kRight), &w), "");
+  EXPECT_EQ(LaneChangeTarget(ChangingBus(0.0, 0.026, Blinker::kLeft), &w), "");
+  EXPECT_EQ(LaneChangeTarget(ChangingBus(0.16, 0.0, Blinker::kLeft), &w), "");
+  VehicleOnLane past = ChangingBus(-1.41 + 3.2, 0.23, Blinker::kLeft);
+  past.lane = "E_1";
+  past.lane_index = 1;
+  EXPECT_EQ(LaneChangeTarget(past, &w), "");
+  // A lane its class may not use.
+  FakeSumoWorld bus_only_left;
+  bus_only_left.AddEdge("E", 0, 0, 200, 0, 2, 3.2, {"passenger"});
+  EXPECT_EQ(LaneChangeTarget(ChangingBus(0.16, 0.026, Blinker::kLeft), &bus_only_left), "");
+}
+
+TEST(ObjectLanes, WithLaneChangeTargetTheLanesAreThoseOfTheLaneMovedInto) {
+  FakeSumoWorld w = TwoLanesEast();
+  CounterLanes counter(&w);
+  SceneConfig config;  // the default: its own lane
+  const VehicleOnLane bus = ChangingBus(0.16, 0.026, Blinker::kLeft);
+  const ObjectLanes own = LanesOf(bus, config, 0.1, &w, &counter);
+  config.lane_change_target = true;
+  const ObjectLanes into = LanesOf(bus, config, 0.1, &w, &counter);
+  ASSERT_TRUE(into.lanes.own && own.lanes.own);
+  // In the bus's frame (its centre on E_0's centre line, turned 1.5 degrees left): E_0 runs
+  // from y = -1.6 to 1.6 at its first samples, E_1 from 1.6 to 4.8.
+  EXPECT_NEAR(into.lanes.own->left.points[0].y, 4.8, 0.01);
+  EXPECT_NEAR(into.lanes.own->right.points[0].y, 1.6, 0.01);
+  EXPECT_TRUE(into.lanes.right.has_value());
+  EXPECT_FALSE(into.lanes.left.has_value());
+  EXPECT_NEAR(own.lanes.own->left.points[0].y, 1.6, 0.01);
+  EXPECT_NEAR(own.lanes.own->right.points[0].y, -1.6, 0.01);
+  EXPECT_TRUE(own.lanes.left.has_value());
+  EXPECT_FALSE(own.lanes.right.has_value());
 }
 
 }  // namespace

@@ -606,6 +606,53 @@ TEST(SceneStage, AtShortStepsAVehicleFollowingItsLanesTurnsAsItsHeadingAlongThem
   EXPECT_NEAR(YawRateEnteringACorner(config, 5.0), 0.0, 1e-12);
 }
 
+// A 5 m car at 8 m/s on lane 0 of a straight two-lane road E running east from x = 0, come
+// straight on through a junction from W (a 10 m internal lane), read twice 0.1 s apart with
+// its front `front_m` and then `front_m` + 0.8 m into E, SUMO's angle `first_deg` and then
+// `second_deg` (navigation degrees; east is 90): the yaw rate it is read with at the second.
+double YawRateAfterAHeadingStep(const SceneConfig& config, double first_deg, double second_deg,
+                                double front_m = 1.0) {
+  FakeSumoWorld w(0.1);
+  w.AddEdge("W", -110, 0, -10, 0, 2);
+  w.AddLaneShape(":J_0", {Point2{-10, -1.6}, Point2{0, -1.6}});
+  w.AddEdge("E", 0, 0, 300, 0, 2);
+  w.AddLinkVia("W_0", "E_0", ":J_0_0", "s");
+  w.AddLink(":J_0_0", "E_0");
+  SumoObject& car = w.AddVehicle("car", front_m, -1.6, first_deg, 8.0, "E_0", front_m, {"W", "E"});
+  car.route_index = 1;
+  SceneStage stage(config, w.StepLength(), true, &w, &w);
+  stage.Run(Observe(w, {"car"}));
+  w.Step();
+  SumoObject& moved = *w.Find("car");
+  moved.x_m = front_m + 0.8;
+  moved.lane_position_m = front_m + 0.8;
+  moved.angle_deg = second_deg;
+  return stage.Run(Observe(w, {"car"})).scenes.at(0).ego.state.yaw_rate_radps;
+}
+
+// SceneConfig::lane_change_yaw_rate. Where SUMO moves vehicles sideways over time, its heading
+// of a car whose back is still behind its lane's start jumps when such a move begins (the
+// traced sublane-grid case: 9 degrees in one step, read as a turn into the counter lane); the
+// car then turns as its lane does (here not at all), not at the jump's rate. Catches a rule
+// that is ignored, one applied with SUMO's instant lane changes (where a heading change on a
+// lane is the car's), one applied to headings beyond kSidewaysMaxAngleRad of the lane, one
+// applied once the back is on the lane (SUMO's heading change is then the sideways motion's),
+// and an option that does not turn it off.
+TEST(SceneStage, ACarMovedSidewaysAlongItsLaneTurnsAsItsLaneNotAsItsHeadingJumped) {
+  const double jump = (5.0 * kPi / 180.0) / 0.1;  // 5 degrees left in 0.1 s: within grip
+  SceneConfig gradual;
+  gradual.instant_lane_changes = false;
+  EXPECT_NEAR(YawRateAfterAHeadingStep(gradual, 90.0, 85.0), 0.0, 1e-12);
+  // Turned 25 degrees from its lane: not a sideways move along it; its heading's change.
+  EXPECT_NEAR(YawRateAfterAHeadingStep(gradual, 70.0, 65.0), jump, 1e-9);
+  // Its back on E (front 6 m into it): its heading's change.
+  EXPECT_NEAR(YawRateAfterAHeadingStep(gradual, 90.0, 85.0, 6.0), jump, 1e-9);
+  SceneConfig instant;  // SUMO's defaults: lanechange.duration 0
+  EXPECT_NEAR(YawRateAfterAHeadingStep(instant, 90.0, 85.0), jump, 1e-9);
+  gradual.lane_change_yaw_rate = false;
+  EXPECT_NEAR(YawRateAfterAHeadingStep(gradual, 90.0, 85.0), jump, 1e-9);
+}
+
 TEST(SceneStage, ATeleportForgetsTheHeadingThatWouldBeHeld) {
   // 32 degrees in 0.1 s: held without the teleport (the test above), taken after it.
   EXPECT_NEAR(HeadingsRead(SceneConfig{}, {58}, /*teleported_at=*/0)[0], 32.0, 1e-9);
