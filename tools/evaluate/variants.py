@@ -90,6 +90,14 @@ VARIANTS = [
             "ours taking every vehicle's yaw rate at short steps from its last step's heading "
             "change (--no-lane-heading-yaw-rate)",
             {"act": "warn", "no-lane-heading-yaw-rate": "true"}),
+    Variant("no-lane-change-yaw-rate",
+            "ours taking the heading change of a vehicle SUMO moves sideways just past a "
+            "junction as its yaw rate, not its lane's (--no-lane-change-yaw-rate)",
+            {"act": "warn", "no-lane-change-yaw-rate": "true"}),
+    Variant("lane-change-target",
+            "experiment (ours): a vehicle seen changing lanes is taken as on the lane it moves "
+            "into (--lane-change-target)",
+            {"act": "warn", "lane-change-target": "true"}),
     Variant("no-junction-shapes",
             "ours drawing the lanes ahead through a junction as the chord between the lanes, "
             "not along its internal lanes (--no-junction-shapes)",
