@@ -2,7 +2,14 @@
 
 #include <algorithm>
 
+#include "plugin/network/polyline.h"
+
 namespace criticality::plugin {
+
+double OnShape(const LaneInfo& lane, double lane_position_m) {
+  return lane.length_m > 0.0 ? lane_position_m * PolylineLength(lane.shape) / lane.length_m
+                             : lane_position_m;
+}
 
 bool Allows(RoadNetwork& network, const std::string& lane, const std::string& vclass) {
   const std::vector<std::string>& allowed = network.AllowedClasses(lane);

@@ -53,6 +53,10 @@ class RoadNetwork {
 /** Internal lanes and edges (inside a junction) have IDs that start with ':'. */
 inline bool IsInternal(const std::string& id) { return !id.empty() && id[0] == ':'; }
 
+/** A lane position (SUMO's, along its lane length) as a distance along the lane's shape: the
+ *  two lengths differ where netconvert smoothed the lane, and SUMO scales one onto the other. */
+double OnShape(const LaneInfo& lane, double lane_position_m);
+
 /** Whether `vclass` may use `lane`. */
 bool Allows(RoadNetwork& network, const std::string& lane, const std::string& vclass);
 

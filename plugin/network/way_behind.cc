@@ -54,13 +54,6 @@ std::vector<std::string> StepBack(RoadNetwork& network, const std::string& lane,
   return best;
 }
 
-// A lane position scaled onto the lane's shape (SUMO's lane lengths and shape lengths differ
-// where netconvert smoothed a lane).
-double OnShape(const LaneInfo& l, double lane_position_m) {
-  const double shape = PolylineLength(l.shape);
-  return l.length_m > 0.0 ? lane_position_m * shape / l.length_m : lane_position_m;
-}
-
 }  // namespace
 
 std::vector<std::string> LanesBehind(RoadNetwork& network, const std::string& lane,

@@ -75,12 +75,6 @@ void Neighbours(const VehicleOnLane& v, const std::string& reference, RoadNetwor
 
 }  // namespace
 
-double ShapePosition(const LaneInfo& lane, double lane_position_m) {
-  // SUMO's lane length and the shape's differ where netconvert smoothed the lane.
-  return lane.length_m > 0.0 ? lane_position_m * PolylineLength(lane.shape) / lane.length_m
-                             : lane_position_m;
-}
-
 std::string LaneChangeTarget(const VehicleOnLane& v, RoadNetwork* network) {
   if (v.blinker == Blinker::kNone || v.lane.empty() || IsInternal(v.lane)) return "";
   const LaneInfo& own = network->Lane(v.lane);
@@ -90,8 +84,8 @@ std::string LaneChangeTarget(const VehicleOnLane& v, RoadNetwork* network) {
   const std::string target = own.edge + "_" + std::to_string(index);
   if (!Allows(*network, target, v.vehicle_class)) return "";
   double at_front = 0.0, at_centre = 0.0;
-  const Point2 on = PointAlong(own.shape, ShapePosition(own, v.lane_position_m), &at_front);
-  PointAlong(own.shape, ShapePosition(own, std::fmax(0.0, v.lane_position_m - 0.5 * v.length_m)),
+  const Point2 on = PointAlong(own.shape, OnShape(own, v.lane_position_m), &at_front);
+  PointAlong(own.shape, OnShape(own, std::fmax(0.0, v.lane_position_m - 0.5 * v.length_m)),
              &at_centre);
   const double left_offset =
       std::cos(at_front) * (v.front.y - on.y) - std::sin(at_front) * (v.front.x - on.x);
@@ -104,10 +98,11 @@ std::string LaneChangeTarget(const VehicleOnLane& v, RoadNetwork* network) {
 ObjectLanes LanesOf(const VehicleOnLane& seen, const SceneConfig& config, double step_s,
                     RoadNetwork* network, CounterLanes* counter_lanes) {
   ObjectLanes out;
-  if (!seen.lane.empty() && !IsInternal(seen.lane) && seen.lane_position_m < seen.length_m) {
+  if (config.lane_change_yaw_rate && !config.instant_lane_changes && !seen.lane.empty() &&
+      !IsInternal(seen.lane) && seen.lane_position_m < seen.length_m) {
     const LaneInfo& own = network->Lane(seen.lane);
     double yaw = 0.0;
-    PointAlong(own.shape, ShapePosition(own, 0.5 * seen.lane_position_m), &yaw);
+    PointAlong(own.shape, OnShape(own, 0.5 * seen.lane_position_m), &yaw);
     out.lane_start_yaw_rad = yaw;
   }
   VehicleOnLane v = seen;

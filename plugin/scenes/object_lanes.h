@@ -59,9 +59,6 @@ std::string LaneChangeTarget(const VehicleOnLane& v, RoadNetwork* network);
 inline constexpr double kLaneChangeMinOffsetM = 0.1;
 inline constexpr double kLaneChangeMinAngleRad = 0.0175;  // 1 degree
 
-/** `lane_position_m` (SUMO's, along its lane length) as a distance along the lane's shape. */
-double ShapePosition(const LaneInfo& lane, double lane_position_m);
-
 /** The lane the vehicle drives onto after `lane`: along its route (NextLaneOnRoute, advancing
  *  *route_index), or with observable_only as it is seen to go (NextLaneSeen). */
 std::string NextLaneOf(const VehicleOnLane& v, const std::string& lane, RoadNetwork* network,
@@ -85,7 +82,8 @@ struct ObjectLanes {
    *  the lanes (HeadingAlong, over kLaneHeadingWindowS of its speed each way of its front, at
    *  least 1 m); nullopt otherwise or where the way behind is not known. */
   std::optional<LaneHeading> lane_heading;
-  /** Where the vehicle's back is still on the lanes behind its normal lane: that lane's
+  /** With SceneConfig::lane_change_yaw_rate and continuous lane changes, where the vehicle's
+   *  back is still on the lanes behind its normal lane: that lane's
    *  direction (math yaw) from its start to the front (at the middle between them); nullopt
    *  otherwise. SUMO measures a vehicle's heading from its back on the lanes behind, except
    *  while it moves the vehicle sideways (continuous lane changes): from the lane's start then
