@@ -241,6 +241,14 @@ double ReferenceAccel(const ObjectState& s, const core::Parabola& centre, const 
   return std::fmin(s.accel_mps2, std::fmin(expected, curve));
 }
 
+// Where another vehicle's profiles start (held through the latency): its current acceleration, or
+// its expected one where that is lower and Params::expected_accel_at_once says it acts now.
+double ProfileStartAccel(const ObjectState& s, const Params& p) {
+  if (p.expected_accel_reference && p.expected_accel_at_once && s.expected_accel_mps2)
+    return std::fmin(s.accel_mps2, *s.expected_accel_mps2);
+  return s.accel_mps2;
+}
+
 // The path part of the scores: d_path (the lateral part of d_str) and c_com * c_cou.
 struct PathScore {
   double d_path{1.0};
@@ -526,8 +534,8 @@ int StopProfile(const core::HypothesisSet& h, const StopObligation& stop, int re
 // profiles, scores' ranges, the stopping profile and the top speed). With `stop` (a credible stop
 // obligation, other vehicles only), one profile becomes the stopping profile and its index is
 // written to `stop_profile` (-1 when none fits: see StopProfile).
-std::vector<ProfileScore> SetVehicleProfiles(const Params& p, double a_ref, const ProfileRange& r,
-                                             core::HypothesisSet* h,
+std::vector<ProfileScore> SetVehicleProfiles(const Params& p, double a_ref, double start_accel,
+                                             const ProfileRange& r, core::HypothesisSet* h,
                                              std::vector<double>* accel = nullptr,
                                              std::vector<double>* slip = nullptr,
                                              const StopObligation* stop = nullptr,
@@ -548,7 +556,7 @@ std::vector<ProfileScore> SetVehicleProfiles(const Params& p, double a_ref, cons
   const double current = r.Clamp(a_ref);
   // A typed vehicle's profiles start from its current acceleration within its range, so that
   // not even the latency before a profile acts leaves the range.
-  const double start = r.typed ? r.Clamp(h->accel0) : h->accel0;
+  const double start = r.typed ? r.Clamp(start_accel) : start_accel;
   double scale = 1.0;  // profile value -> m/s^2
   if (ego && !p.ego_profiles_in_accel) {
     // Paper: longitudinal slip, equally spaced as the accelerations are; no reference profile.
@@ -713,8 +721,9 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     h.seam_speed = SeamSpeedOf(h.vehicle, type, params);
     const double a_ref = EgoReferenceWithStop(
         scene.ego, ReferenceAccel(scene.ego.state, ego_fitted.own->Centre(), params), params);
-    const std::vector<ProfileScore> profiles = SetVehicleProfiles(
-        params, a_ref, RangeOf(type, params), &h, &pb.ego_profile_accel, &pb.ego_profile_slip);
+    const std::vector<ProfileScore> profiles =
+        SetVehicleProfiles(params, a_ref, scene.ego.state.accel_mps2,  // its driver's latency
+                           RangeOf(type, params), &h, &pb.ego_profile_accel, &pb.ego_profile_slip);
     const bool track = TrackBound(type, params);
     if (track) h.steer_latency = 0.0;
     const std::vector<PathScore> paths =
@@ -771,9 +780,9 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     const std::optional<StopObligation> stop = CredibleStop(v.stop_line, v.state, params);
     std::vector<double> accel;
     int stop_profile = -1;
-    const std::vector<ProfileScore> profiles =
-        SetVehicleProfiles(params, a_ref, RangeOf(v.type, params), &h, &accel, nullptr,
-                           stop ? &*stop : nullptr, &stop_profile);
+    const std::vector<ProfileScore> profiles = SetVehicleProfiles(
+        params, a_ref, ProfileStartAccel(v.state, params), RangeOf(v.type, params), &h, &accel,
+        nullptr, stop ? &*stop : nullptr, &stop_profile);
     const bool track = TrackBound(v.type, params);
     if (track) h.steer_latency = 0.0;
     const std::vector<PathScore> paths =

@@ -255,6 +255,16 @@ void OptionTable::ModelChoices() {
       "experimental (ours, off by default): a lane that turns by 15 degrees or more over its "
       "sampled reach is sent as a corner (straight, a parabola tangent to both straights, "
       "straight) instead of three samples on it (estimator Params::lane_corners)")(
+      "lane-corner-in-turn", po::bool_switch(&raw.lane_corner_in_turn),
+      "experimental (ours, off by default): a vehicle in a junction turn too tight for its "
+      "lane's three samples (the inner divider folds back) gets its lanes as a corner from "
+      "where it is instead of none (a virtual lane) (estimator Params::lane_corner_in_turn)")(
+      "no-expected-accel-at-once", po::bool_switch(&raw.no_expected_accel_at_once),
+      "ablation (ours): another vehicle's hypotheses hold its current acceleration through "
+      "the reaction latency also where its expected (car-following) acceleration is lower; by "
+      "default they start from the expected one, as SUMO's drivers act in their next step "
+      "(the ego keeps its latency; estimator Params::expected_accel_at_once; reads SUMO's "
+      "driver model)")(
       "no-car-following", po::bool_switch(&raw.no_car_following),
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)");

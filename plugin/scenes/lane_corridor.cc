@@ -15,6 +15,7 @@ LaneSampling LaneSamplingFor(const Params& params) {
   s.straight_by_fit = params.straight_before_turn_by_fit && s.straight_before_turn;
   s.centre_within_lane = params.lane_fit_within_lane && params.road_model;
   s.corners = params.lane_corners && params.road_model;
+  s.corner_in_turn = params.lane_corner_in_turn && params.road_model;
   return s;
 }
 
@@ -108,7 +109,8 @@ double MeetingDistance(const Point2& a, double h0, const Point2& b, double h2,
 
 }  // namespace
 
-std::optional<Corner> CornerOf(const std::vector<Point2>& centre, double s0, double s2) {
+std::optional<Corner> CornerOf(const std::vector<Point2>& centre, double s0, double s2,
+                               double min_straight_m) {
   constexpr double kMaxCornerTurnRad = 2.9670597283903604;  // 170 degrees
   if (centre.size() < 2 || !(s2 > s0)) return std::nullopt;
   double h0 = 0.0, h2 = 0.0;
@@ -125,7 +127,7 @@ std::optional<Corner> CornerOf(const std::vector<Point2>& centre, double s0, dou
   const double end = s2 - StraightFrom(centre, s2, h2, inside, -kHeadingStep);
   // A vehicle already in the turn keeps the parabola through the turn: the corner is for a
   // straight road that leads into it.
-  if (begin - s0 < kMinCornerStraightM) return std::nullopt;
+  if (begin - s0 < min_straight_m) return std::nullopt;
   Corner c;
   c.corner = Point2{p0.x + in * std::cos(h0), p0.y + in * std::sin(h0)};
   c.in_m = in;
@@ -143,13 +145,19 @@ namespace {
 // `straight` > 0: the middle samples at that distance (a straight of that length, as
 // StraightBeforeTurn's) instead of StraightBeforeTurn's choice. *deviation (where given): the
 // own lane's fitted centre's LaneCentreDeviation where the check above measured it, else NaN.
+// `turn_corner`: sampled as a corner (CornerOf) also where the vehicle is already in the turn
+// (LaneSampling::corner_in_turn); nullopt where the centre line makes no corner.
 std::optional<LaneSet> SampleOver(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
                                   const LaneSampling& sampling, bool* within_lane,
-                                  double straight_m = 0.0, double* deviation = nullptr) {
+                                  double straight_m = 0.0, double* deviation = nullptr,
+                                  bool turn_corner = false) {
   *within_lane = true;
   if (deviation) *deviation = std::nan("");
   const std::optional<Corner> corner =
-      sampling.corners ? CornerOf(c.centre, c.position_m, c.position_m + reach_m) : std::nullopt;
+      turn_corner        ? CornerOf(c.centre, c.position_m, c.position_m + reach_m, 0.0)
+      : sampling.corners ? CornerOf(c.centre, c.position_m, c.position_m + reach_m)
+                         : std::nullopt;
+  if (turn_corner && !corner) return std::nullopt;
   const double straight = straight_m > 0.0 ? straight_m
                           : sampling.straight_before_turn && !corner
                               ? StraightBeforeTurn(c, reach_m)
@@ -341,6 +349,14 @@ LaneSet SampleLaneSet(const LaneCorridor& c, double reach_m, const Pose2& X_WV,
   if (reach >= first) reach = 0.5 * first;
   for (; reach >= kMinSampledReachM; reach *= 0.5) {
     if (const auto set = sample(reach)) return *set;
+  }
+  // No parabola through the turn fits (a tight junction turn whose inner divider, offset from
+  // its centre line, folds back): the turn as a corner, from where the vehicle is.
+  if (sampling.corner_in_turn && !sampling.corners) {
+    bool within_lane = true;
+    if (auto set = SampleOver(c, first, X_WV, sampling, &within_lane, 0.0, nullptr, true);
+        set && within_lane)
+      return *set;
   }
   return fallback ? *fallback : LaneSet{};
 }

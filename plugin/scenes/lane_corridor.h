@@ -64,6 +64,12 @@ struct LaneSampling {
    *  tangent length (CornerOf's own estimate or one of 12 from 1 m to the longer straight)
    *  whose fit keeps closest to it. */
   bool corners{false};
+  /** Params::lane_corner_in_turn: where no reach gives an own lane that can be fitted within
+   *  the lane (SampleLaneSet would send none, and the estimator would predict the vehicle on a
+   *  virtual lane out of its turn), the lanes are sampled as a corner (CornerOf) from where
+   *  the vehicle is, also when it is already in the turn; kept only where the corner's fitted
+   *  centre stays within the lane. */
+  bool corner_in_turn{false};
 };
 constexpr double kStraightToleranceRad = 0.05235987755982989;   // 3 degrees
 constexpr double kStraightThenTurnMinRad = 0.2617993877991494;  // 15 degrees
@@ -105,12 +111,13 @@ struct Corner {
 constexpr double kMinCornerStraightM = 2.0;
 
 /** The corner of the centre line between s0 and s2, when it runs straight from s0 for at least
- *  kMinCornerStraightM, turns by at least kStraightThenTurnMinRad (and less than 170 degrees)
+ *  min_straight_m, turns by at least kStraightThenTurnMinRad (and less than 170 degrees)
  *  by s2, and both straights run forward to their meeting point. The turn's tangent length
  *  is the mean of the lengths, from the corner, at which the line leaves the first straight's
  *  heading and takes the second's (within kStraightToleranceRad; 0.5 m steps), at least 1 m
  *  and at most the shorter straight. */
-std::optional<Corner> CornerOf(const std::vector<Point2>& centre, double s0, double s2);
+std::optional<Corner> CornerOf(const std::vector<Point2>& centre, double s0, double s2,
+                               double min_straight_m = kMinCornerStraightM);
 
 /** The sampling for the estimator's parameters. */
 LaneSampling LaneSamplingFor(const Params& params);

@@ -146,5 +146,56 @@ TEST(ExpectedAccel, BrakingWithoutAKnownCauseIsReleasedOnlyWhereTheCausesAreKnow
   EXPECT_LT(explained.p_reference, 0.05);
 }
 
+// Params::expected_accel_at_once, as traced in a SUMO grid (bench/RESULTS.md, seventeenth
+// stop): a car accelerating at +2.2 m/s^2 at 4.3 m/s towards a car standing 3 m ahead of its
+// bumper, expected to brake at 4.5 m/s^2 (SUMO's follower stopped 1 m short). Holding +2.2
+// m/s^2 through the 0.2 s latency it needs about 3.4 m to stop; braking at once, about 2.3 m.
+// Catches a rule that is ignored (p stays), applied to the ego, or applied to an expectation
+// above the current acceleration.
+Scene FollowerAcceleratingTowardsAStandingCar() {
+  Scene scene;
+  scene.ego.lanes = bench::StraightThreeLanes();
+  scene.ego.length_m = 5.0;
+  Vehicle follower;
+  follower.id = "follower";
+  follower.length_m = 5.0;
+  follower.state.x_m = -(5.0 + 3.0);
+  follower.state.speed_mps = 4.3;
+  follower.state.accel_mps2 = 2.2;
+  follower.state.expected_accel_mps2 = -4.5;
+  scene.vehicles.push_back(follower);
+  return scene;
+}
+
+TEST(ExpectedAccel, AnExpectedBrakingActsAtOnceWhereTheRuleSaysSo) {
+  Scene scene = FollowerAcceleratingTowardsAStandingCar();
+  Params held;
+  held.expected_accel_at_once = false;
+  const Result at_once = Estimator(Params{}).Estimate(scene);
+  const Result latency = Estimator(held).Estimate(scene);
+  EXPECT_GT(latency.p_collision, 0.5);
+  EXPECT_LT(at_once.p_collision, 0.2);
+  // Not for the ego: its hypotheses keep its driver's latency (the rule changes nothing there).
+  Scene ego_scene;
+  ego_scene.ego.lanes = bench::StraightThreeLanes();
+  ego_scene.ego.length_m = 5.0;
+  ego_scene.ego.state.speed_mps = 4.3;
+  ego_scene.ego.state.accel_mps2 = 2.2;
+  ego_scene.ego.state.expected_accel_mps2 = -4.5;
+  Vehicle standing;
+  standing.id = "standing";
+  standing.length_m = 5.0;
+  standing.state.x_m = 5.0 + 3.0;
+  ego_scene.vehicles.push_back(standing);
+  const Result ego_at_once = Estimator(Params{}).Estimate(ego_scene);
+  const Result ego_latency = Estimator(held).Estimate(ego_scene);
+  EXPECT_GT(ego_latency.p_reference, 0.9);
+  EXPECT_EQ(ego_at_once.p_collision, ego_latency.p_collision);
+  // Only a lower expectation acts at once; one above the current acceleration changes nothing.
+  scene.vehicles[0].state.expected_accel_mps2 = 3.0;
+  EXPECT_EQ(Estimator(Params{}).Estimate(scene).p_collision,
+            Estimator(held).Estimate(scene).p_collision);
+}
+
 }  // namespace
 }  // namespace criticality

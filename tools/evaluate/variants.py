@@ -98,6 +98,14 @@ VARIANTS = [
             "experiment (ours): a vehicle seen changing lanes is taken as on the lane it moves "
             "into (--lane-change-target)",
             {"act": "warn", "lane-change-target": "true"}),
+    Variant("lane-corner-in-turn",
+            "experiment (ours): a vehicle in a junction turn too tight for its lane's samples "
+            "gets a corner from where it is instead of no lanes (--lane-corner-in-turn)",
+            {"act": "warn", "lane-corner-in-turn": "true"}),
+    Variant("no-expected-accel-at-once",
+            "ours holding a vehicle's current acceleration through the reaction latency also "
+            "where its expected one is lower (--no-expected-accel-at-once)",
+            {"act": "warn", "no-expected-accel-at-once": "true"}),
     Variant("no-junction-shapes",
             "ours drawing the lanes ahead through a junction as the chord between the lanes, "
             "not along its internal lanes (--no-junction-shapes)",

@@ -247,6 +247,17 @@ struct Params {
    *  held-out set as a whole (bench/RESULTS.md; plugin/scenes/lane_corridor.h; driver
    *  --lane-corners). */
   bool lane_corners{false};
+  /** The SUMO driver's lane sampling: where no reach gives an own lane that can be fitted
+   *  within the lane (a tight junction turn, whose inner divider, offset from the centre line
+   *  by half the lane's width, folds back once the turn's radius is about that half width:
+   *  SUMO's right turns of 1.6 m radius on 3.2 m lanes), the lanes are sent as a corner
+   *  (Lane::corner_tangent_m) from where the vehicle is, also when it is already in the turn,
+   *  if that corner's fitted centre stays within the lane; before, such a vehicle had no lanes
+   *  and was predicted on a virtual lane out of its turn (traced in bench/RESULTS.md,
+   *  seventeenth stop). An experiment, off: on the tuning grid it gave the traced car a lane
+   *  but changed no warning (the car's 0.5 rad of steering cannot follow SUMO's 1.6 m radius
+   *  either). Driver: --lane-corner-in-turn. */
+  bool lane_corner_in_turn{false};
   /** The SUMO driver's lane sampling: a lane whose fitted centre line leaves the lane between
    *  its samples (lies farther than half the lane's width from its centre line, as a parabola
    *  through three samples of a short straight and a sharp junction turn does: 3.4 m towards
@@ -315,6 +326,19 @@ struct Params {
    *  around the expected reaction keep the ones in which they do not, with their lower
    *  scores. Project choice; paper-literal: false. */
   bool expected_accel_reference{true};
+  /** With true, another vehicle whose caller gives an expected acceleration below its current
+   *  one (ObjectState::expected_accel_mps2) does it from now: its profiles start from it
+   *  instead of holding the current acceleration through latency_s. SUMO's drivers decide
+   *  afresh every step and apply the decision in the next one, without a reaction latency: a
+   *  car accelerating at +2.2 m/s^2 towards its yield line 2 m ahead stopped there at -4.5
+   *  m/s^2 at once, while its hypotheses held +2.2 m/s^2 for 0.2 s and ran 2 m on into the car
+   *  waiting in the junction (bench/RESULTS.md, seventeenth stop). The ego keeps the latency:
+   *  its hypotheses are what its driver (or the closed loop's actuator) can still do, and
+   *  applied to the ego too the rule cost the designed collisions their anticipation where the
+   *  ego is scripted not to brake (cut_in 1.6 -> 0.7 s). Reads what only the simulator knows
+   *  (its drivers react without latency); off for an on-board use. Project choice;
+   *  paper-literal: false. Driver: --no-expected-accel-at-once. */
+  bool expected_accel_at_once{true};
   /** With true, the reference of a vehicle (the ego too) that is too fast for the curve of its
    *  own lane ahead brakes for it: the constant deceleration that brings it, by the point of the
    *  lane's centre within speed x horizon where it matters most, to the speed at which that

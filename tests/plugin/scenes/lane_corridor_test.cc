@@ -410,6 +410,46 @@ TEST(LaneCorridor, LaneYawRateFollowsTheLaneNotThePast) {
   EXPECT_EQ(LaneYawRate(LaneCorridor{}, 5.0, 2.5), 0.0);
 }
 
+// LaneSampling::corner_in_turn, traced on a netgenerate grid (bench/RESULTS.md, seventeenth
+// stop): a car whose front has entered SUMO's right turn :D3_3_0 (1.6 m radius on 3.2 m lanes,
+// so the inner divider, offset by half the width, folds to a point) and whose centre is 0.47 m
+// before it, 27.6 m of reach, its heading already 13 degrees into the turn. No reach of three
+// samples gives a usable own lane; the corner from where it is does, and keeps within 0.1 m
+// of the road. Catches a fallback that never runs (no lanes), one that runs where three samples
+// work (the set would change), and one that sends a corner leaving the lane.
+TEST(LaneCorridor, ATurnTooTightForThreeSamplesIsSentAsACornerFromWhereTheVehicleIs) {
+  LaneCorridor c;
+  c.centre = {{590.4, 592.0}, {591.1, 591.9}, {591.6, 591.6},
+              {591.9, 591.1}, {592.0, 590.4}, {592.0, 413.6}};
+  c.position_m = -0.471;
+  c.width_m = 3.2;
+  c.left = NeighbourLane{3.2, false};
+  const Pose2 X_WV{589.4882, 591.5167, -0.23051};
+  LaneSampling without;
+  LaneSampling with;
+  with.corner_in_turn = true;
+  EXPECT_FALSE(SampleLaneSet(c, 27.616, X_WV, without).own);
+  const LaneSet set = SampleLaneSet(c, 27.616, X_WV, with);
+  ASSERT_TRUE(set.own);
+  EXPECT_GT(set.own->corner_tangent_m, 0.0);
+  Params params;
+  const std::vector<Point2> road = CentreLineAhead(c, X_WV, 5.0);
+  EXPECT_LT(LaneCentreDeviation(*set.own, LaneFrameAngle(set, params), road), 0.1);
+  // Where three samples work (the same car 20 m before the turn) nothing changes.
+  LaneCorridor before = c;
+  before.centre.insert(before.centre.begin(), Point2{560.4, 592.0});
+  before.position_m = 10.0;
+  const Pose2 X_WB{570.4, 592.0, 0.0};
+  const LaneSet plain = SampleLaneSet(before, 27.616, X_WB, without);
+  const LaneSet sent = SampleLaneSet(before, 27.616, X_WB, with);
+  ASSERT_TRUE(plain.own && sent.own);
+  EXPECT_EQ(sent.own->corner_tangent_m, 0.0);
+  EXPECT_EQ(sent.own->left.points[2].x, plain.own->left.points[2].x);
+  EXPECT_FALSE(LaneSamplingFor(Params{}).corner_in_turn);  // an experiment: off
+  params.lane_corner_in_turn = true;
+  EXPECT_TRUE(LaneSamplingFor(params).corner_in_turn);
+}
+
 TEST(LaneCorridor, VehicleAcrossItsLaneGetsNoLanes) {
   LaneCorridor c;
   c.centre = {{0, 0}, {100, 0}};
