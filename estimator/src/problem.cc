@@ -226,13 +226,18 @@ double CurveAccel(double v, const core::Parabola& centre, const Params& p) {
   return a == HUGE_VAL ? a : std::fmax(a, -p.curve_decel_max_mps2);
 }
 
+// The expected acceleration the caller gives, where Params::expected_accel_reference uses it;
+// HUGE_VAL where there is none (so that fmin with it changes nothing).
+double ExpectedAccelInForce(const ObjectState& s, const Params& p) {
+  return p.expected_accel_reference && s.expected_accel_mps2 ? *s.expected_accel_mps2 : HUGE_VAL;
+}
+
 // The acceleration of the reference hypothesis: the current one, or lower where the caller
 // gives a lower expected one (Params::expected_accel_reference) or the lane's curve asks for
 // less speed (Params::curve_speed_reference); higher where the vehicle brakes harder than any
 // reason to brake that the caller knows (Params::release_unexplained_braking).
 double ReferenceAccel(const ObjectState& s, const core::Parabola& centre, const Params& p) {
-  const double expected =
-      p.expected_accel_reference && s.expected_accel_mps2 ? *s.expected_accel_mps2 : HUGE_VAL;
+  const double expected = ExpectedAccelInForce(s, p);
   const double curve = CurveAccel(s.speed_mps, centre, p);
   if (p.release_unexplained_braking && s.braking_causes_known) {
     const double asked = std::fmin(0.0, std::fmin(expected, curve));
@@ -244,9 +249,8 @@ double ReferenceAccel(const ObjectState& s, const core::Parabola& centre, const 
 // Where another vehicle's profiles start (held through the latency): its current acceleration, or
 // its expected one where that is lower and Params::expected_accel_at_once says it acts now.
 double ProfileStartAccel(const ObjectState& s, const Params& p) {
-  if (p.expected_accel_reference && p.expected_accel_at_once && s.expected_accel_mps2)
-    return std::fmin(s.accel_mps2, *s.expected_accel_mps2);
-  return s.accel_mps2;
+  return p.expected_accel_at_once ? std::fmin(s.accel_mps2, ExpectedAccelInForce(s, p))
+                                  : s.accel_mps2;
 }
 
 // The path part of the scores: d_path (the lateral part of d_str) and c_com * c_cou.
@@ -852,9 +856,7 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     h.profile_start = h.accel0;
     // The reference: the current acceleration, or a lower expected one (a person stopping
     // where it must wait; Params::expected_accel_reference).
-    double a_ref = h.accel0;
-    if (params.expected_accel_reference && ped.state.expected_accel_mps2)
-      a_ref = std::fmin(a_ref, *ped.state.expected_accel_mps2);
+    const double a_ref = std::fmin(h.accel0, ExpectedAccelInForce(ped.state, params));
     std::vector<double> a;
     const int reference = ProfileAccelerations(
         h.n_profiles, params.pedestrian_accel_min_mps2, params.pedestrian_accel_max_mps2, a_ref,
