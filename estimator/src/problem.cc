@@ -246,13 +246,6 @@ double ReferenceAccel(const ObjectState& s, const core::Parabola& centre, const 
   return std::fmin(s.accel_mps2, std::fmin(expected, curve));
 }
 
-// Where another vehicle's profiles start (held through the latency): its current acceleration, or
-// its expected one where that is lower and Params::expected_accel_at_once says it acts now.
-double ProfileStartAccel(const ObjectState& s, const Params& p) {
-  return p.expected_accel_at_once ? std::fmin(s.accel_mps2, ExpectedAccelInForce(s, p))
-                                  : s.accel_mps2;
-}
-
 // The path part of the scores: d_path (the lateral part of d_str) and c_com * c_cou.
 struct PathScore {
   double d_path{1.0};
@@ -460,18 +453,30 @@ struct StopObligation {
 // The obligation of a vehicle (or the ego) in `state` with `line` when it counts: enabled,
 // naturalistic scoring, and complying is consistent with what the vehicle does (the
 // deceleration it needs, v^2 / 2d, is comfortable, or it already brakes at least half that
-// hard).
+// hard). `comfortable_mps2`: Params::stop_comfortable_decel_mps2, or more for a vehicle whose
+// type brakes harder as a matter of course (ComfortableStopDecel).
 std::optional<StopObligation> CredibleStop(const std::optional<StopLine>& line,
-                                           const ObjectState& state, const Params& p) {
+                                           const ObjectState& state, const Params& p,
+                                           double comfortable_mps2) {
   if (!line || !p.stop_obligations || !Naturalistic(p) || p.profiles < 4) return {};
   const double d = line->distance_m;
   const double speed = state.speed_mps;
   if (speed <= 0.0) return StopObligation{d};
   const double needed = speed * speed / (2.0 * d);  // +inf at the line
-  if (needed <= p.stop_comfortable_decel_mps2 || -state.accel_mps2 >= 0.5 * needed) {
+  if (needed <= comfortable_mps2 || -state.accel_mps2 >= 0.5 * needed) {
     return StopObligation{d};
   }
   return {};
+}
+
+// How hard another vehicle brakes to stop at a line as a matter of course: the comfortable
+// deceleration, or its type's normal largest deceleration where that is more and
+// Params::stop_obligation_at_once says it acts as SUMO's drivers do (they brake up to it to
+// stop at a junction's line).
+double ComfortableStopDecel(const VehicleType& type, const Params& p) {
+  double d = p.stop_comfortable_decel_mps2;
+  if (p.stop_obligation_at_once && type.decel_mps2) d = std::fmax(d, *type.decel_mps2);
+  return d;
 }
 
 // Params::ego_stop_obligations: the ego's reference acceleration `a_ref`, or the constant
@@ -479,11 +484,25 @@ std::optional<StopObligation> CredibleStop(const std::optional<StopLine>& line,
 // that is lower.
 double EgoReferenceWithStop(const Ego& ego, double a_ref, const Params& p) {
   if (!p.ego_stop_obligations) return a_ref;
-  const std::optional<StopObligation> stop = CredibleStop(ego.stop_line, ego.state, p);
+  const std::optional<StopObligation> stop =
+      CredibleStop(ego.stop_line, ego.state, p, p.stop_comfortable_decel_mps2);
   if (!stop) return a_ref;
   const double v = ego.state.speed_mps;
   const double stopping = v <= 0.0 ? 0.0 : -v * v / (2.0 * stop->distance_m);
   return std::fmin(a_ref, stopping);
+}
+
+// Where another vehicle's profiles start (held through the latency): its current acceleration, or
+// lower where it acts now on what it is expected to do: its expected acceleration
+// (Params::expected_accel_at_once) or the deceleration that stops it at a credible stop line
+// (Params::stop_obligation_at_once).
+double ProfileStartAccel(const ObjectState& s, const std::optional<StopObligation>& stop,
+                         const Params& p) {
+  double start = s.accel_mps2;
+  if (p.expected_accel_at_once) start = std::fmin(start, ExpectedAccelInForce(s, p));
+  if (p.stop_obligation_at_once && stop && s.speed_mps > 0.0 && stop->distance_m > 0.0)
+    start = std::fmin(start, -s.speed_mps * s.speed_mps / (2.0 * stop->distance_m));
+  return start;
 }
 
 // Where a vehicle comes to rest (or how far it gets within `limit_s`) under a one-track profile
@@ -781,12 +800,13 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     info.lane = static_cast<int>(lane);
     const FittedLanes fitted = FitLanes(lanes, where + ".lanes", params);
     const double a_ref = ReferenceAccel(v.state, fitted.own->Centre(), params);
-    const std::optional<StopObligation> stop = CredibleStop(v.stop_line, v.state, params);
+    const std::optional<StopObligation> stop =
+        CredibleStop(v.stop_line, v.state, params, ComfortableStopDecel(v.type, params));
     std::vector<double> accel;
     int stop_profile = -1;
     const std::vector<ProfileScore> profiles = SetVehicleProfiles(
-        params, a_ref, ProfileStartAccel(v.state, params), RangeOf(v.type, params), &h, &accel,
-        nullptr, stop ? &*stop : nullptr, &stop_profile);
+        params, a_ref, ProfileStartAccel(v.state, stop, params), RangeOf(v.type, params), &h,
+        &accel, nullptr, stop ? &*stop : nullptr, &stop_profile);
     const bool track = TrackBound(v.type, params);
     if (track) h.steer_latency = 0.0;
     const std::vector<PathScore> paths =

@@ -265,6 +265,7 @@ Params ParamsPreset(const std::string& name) {
     p.straight_before_turn_by_fit = false;
     p.lane_fit_within_lane = false;
     p.expected_accel_at_once = false;
+    p.stop_obligation_at_once = false;
     p.route_end_leaves = false;
     p.road_user_classes = false;
     return p;

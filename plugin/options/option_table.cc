@@ -265,6 +265,12 @@ void OptionTable::ModelChoices() {
       "default they start from the expected one, as SUMO's drivers act in their next step "
       "(the ego keeps its latency; estimator Params::expected_accel_at_once; reads SUMO's "
       "driver model)")(
+      "no-stop-at-once", po::bool_switch(&raw.no_stop_at_once),
+      "ablation (ours): another vehicle with a credible stop line (a red light, a yield line "
+      "with a foe) holds its current acceleration through the reaction latency and counts as "
+      "complying only while 3.4 m/s^2 stops it; by default it brakes for the line from now, "
+      "up to its type's decel, as SUMO's drivers do (the ego keeps its latency; estimator "
+      "Params::stop_obligation_at_once; reads SUMO's driver model)")(
       "no-car-following", po::bool_switch(&raw.no_car_following),
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)");

@@ -106,6 +106,10 @@ VARIANTS = [
             "ours holding a vehicle's current acceleration through the reaction latency also "
             "where its expected one is lower (--no-expected-accel-at-once)",
             {"act": "warn", "no-expected-accel-at-once": "true"}),
+    Variant("no-stop-at-once",
+            "ours holding a vehicle with a credible stop line at its current acceleration "
+            "through the reaction latency, complying only within 3.4 m/s^2 (--no-stop-at-once)",
+            {"act": "warn", "no-stop-at-once": "true"}),
     Variant("no-junction-shapes",
             "ours drawing the lanes ahead through a junction as the chord between the lanes, "
             "not along its internal lanes (--no-junction-shapes)",

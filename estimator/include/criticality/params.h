@@ -339,6 +339,25 @@ struct Params {
    *  (its drivers react without latency); off for an on-board use. Project choice;
    *  paper-literal: false. Driver: --no-expected-accel-at-once. */
   bool expected_accel_at_once{true};
+  /** With true, another vehicle with a credible stop obligation (stop_obligations) acts on it
+   *  from now, as SUMO's drivers do: its profiles start from the constant deceleration that
+   *  stops its front at the line, -v^2 / (2 d), where that is below its current (and expected)
+   *  acceleration, instead of holding the current acceleration through latency_s. Traced
+   *  (bench/RESULTS.md, eighteenth stop): a car turning left, accelerating at +2.1 m/s^2 at 5
+   *  m/s towards its yield line 3.9 m ahead, needed 3.2 m/s^2 to stop there from now; held
+   *  through the latency and the jerk ramp no profile could stop it at the line, so its
+   *  stopping profile was dropped and it was predicted to turn on across the oncoming car's
+   *  lane (p 0.95); SUMO braked it at -4.5 m/s^2 from the next step and it stopped short. Its
+   *  hypotheses that drive on (stop_violation_probability) start from the same deceleration.
+   *  And the obligation stays credible while the deceleration it needs is within the vehicle
+   *  type's normal largest one (VehicleType::decel_mps2, where that is above
+   *  stop_comfortable_decel_mps2): SUMO's drivers brake up to it to stop at a line (the same
+   *  car one step later, 5.3 m/s and 3.4 m from the line, needed 4.1 m/s^2 and stopped there
+   *  at its type's 4.5). The ego keeps its latency and the comfortable deceleration (as for
+   *  expected_accel_at_once). Reads what only the simulator knows (its drivers react without
+   *  latency and brake to their type's limit); off for an on-board use. Project choice;
+   *  paper-literal: false. Driver: --no-stop-at-once. */
+  bool stop_obligation_at_once{true};
   /** With true, the reference of a vehicle (the ego too) that is too fast for the curve of its
    *  own lane ahead brakes for it: the constant deceleration that brings it, by the point of the
    *  lane's centre within speed x horizon where it matters most, to the speed at which that

@@ -340,11 +340,15 @@ TEST(DriverOptions, EachStageGetsItsConfigFromTheOptionsAndTheFinalParameters) {
   EXPECT_FALSE(plain.options.scenes.lane_sampling.corner_in_turn);
   EXPECT_TRUE(plain.options.params.expected_accel_at_once);
   EXPECT_FALSE(d.params.expected_accel_at_once);
-  const ParseOutcome asked = Parse({"--connect", "h:1", "--ego", "e", "--output", "x",
-                                    "--lane-corner-in-turn", "--no-expected-accel-at-once"});
+  EXPECT_TRUE(plain.options.params.stop_obligation_at_once);
+  EXPECT_FALSE(d.params.stop_obligation_at_once);
+  const ParseOutcome asked =
+      Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--lane-corner-in-turn",
+             "--no-expected-accel-at-once", "--no-stop-at-once"});
   EXPECT_TRUE(asked.options.params.lane_corner_in_turn);
   EXPECT_TRUE(asked.options.scenes.lane_sampling.corner_in_turn);
   EXPECT_FALSE(asked.options.params.expected_accel_at_once);
+  EXPECT_FALSE(asked.options.params.stop_obligation_at_once);
   // The closed loop brakes as the escape routes do, and releases at half its threshold.
   EXPECT_EQ(d.act.closed_loop.brake.latency_s, d.params.latency_s);
   EXPECT_EQ(d.act.closed_loop.brake.jerk_mps3, d.params.jerk_mps3);
