@@ -225,9 +225,12 @@ void OptionTable::ModelChoices() {
       "in a junction turn) is a chain of boxes along that way, not one box along SUMO's angle "
       "(plugin/README.md, \"Bodies in a turn\")")(
       "internal-junction-yield", po::bool_switch(&raw.internal_junction_yield),
-      "experimental (ours, off by default): a vehicle that must yield where its turn waits "
-      "inside the junction (SUMO's internal junction, e.g. a left turn across oncoming "
-      "traffic) gets its yield line there, not at the junction's entry")(
+      "the default, kept so that older campaign files still run: a vehicle that must yield "
+      "where its turn waits inside the junction (SUMO's internal junction, e.g. a left turn "
+      "across oncoming traffic) gets its yield line there, not at the junction's entry")(
+      "no-internal-junction-yield", po::bool_switch(&raw.no_internal_junction_yield),
+      "ablation (ours): such a vehicle's yield line stays at the junction's entry, although "
+      "SUMO lets it drive in and wait at its internal junction")(
       "ego-stops", po::bool_switch(&raw.ego_stops),
       "experimental (ours, off by default): an ego that must stop ahead (a red or yellow light, "
       "a stop sign, a yield line while a foe approaches) and can do so comfortably is expected "

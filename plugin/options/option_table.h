@@ -29,7 +29,8 @@ struct RawOptions {
       no_crossing_stops{false}, no_yield_stops{false}, no_heading_hold{false},
       no_way_heading{false}, junction_shapes{false}, no_junction_shapes{false}, bent_bodies{false},
       bodies_on_path{false}, release_braking{false}, no_world_step_collisions{false},
-      ego_stops{false}, internal_junction_yield{false}, no_simd{false}, no_pipeline{false};
+      ego_stops{false}, internal_junction_yield{false}, no_internal_junction_yield{false},
+      no_simd{false}, no_pipeline{false};
 };
 
 /** Not copyable or movable: the table points into `raw` and the options it was built for. */

@@ -49,13 +49,10 @@ VARIANTS = [
     Variant("ego-stops",
             "ours with the ego's own credible stop line as its reference (--ego-stops)",
             {"act": "warn", "ego-stops": "true"}),
-    Variant("internal-junction-yield",
-            "ours with yield lines where a turn waits inside the junction "
-            "(--internal-junction-yield)",
-            {"act": "warn", "internal-junction-yield": "true"}),
-    Variant("ijy-ego-stops",
-            "ours with --internal-junction-yield and --ego-stops",
-            {"act": "warn", "internal-junction-yield": "true", "ego-stops": "true"}),
+    Variant("no-internal-junction-yield",
+            "ours with a yield line at the junction's entry also where SUMO lets the vehicle "
+            "wait inside (--no-internal-junction-yield)",
+            {"act": "warn", "no-internal-junction-yield": "true"}),
     Variant("no-crossing-stops",
             "ours without a waiting pedestrian's stop where its crossing begins (--no-crossing-stops)",
             {"act": "warn", "no-crossing-stops": "true"}),

@@ -342,6 +342,11 @@ TEST(DriverOptions, EachStageGetsItsConfigFromTheOptionsAndTheFinalParameters) {
   EXPECT_FALSE(d.params.expected_accel_at_once);
   EXPECT_TRUE(plain.options.params.stop_obligation_at_once);
   EXPECT_FALSE(d.params.stop_obligation_at_once);
+  // Yield lines where SUMO's vehicle waits inside the junction: on, off with its switch.
+  EXPECT_TRUE(plain.options.scenes.internal_junction_yield);
+  EXPECT_FALSE(
+      Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--no-internal-junction-yield"})
+          .options.scenes.internal_junction_yield);
   const ParseOutcome asked =
       Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--lane-corner-in-turn",
              "--no-expected-accel-at-once", "--no-stop-at-once"});

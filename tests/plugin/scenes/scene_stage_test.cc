@@ -135,9 +135,10 @@ TEST(SceneStage, ARedLightOrAYieldToAnApproachingFoeIsAStopLine) {
   EXPECT_FALSE(nstage.Run(Observe(n, {"minor"})).EgoOf(0).stop_line.has_value());
 }
 
-// --internal-junction-yield: a left turn that waits inside the junction (its internal lane
-// continues into another one, SUMO's internal junction) yields there, at the end of the first
-// internal lane; a turn whose internal lane leads straight out keeps its line at the entry.
+// SceneConfig::internal_junction_yield (on by default): a left turn that waits inside the
+// junction (its internal lane continues into another one, SUMO's internal junction) yields
+// there, at the end of the first internal lane; a turn whose internal lane leads straight out
+// keeps its line at the entry.
 TEST(SceneStage, ATurnThatWaitsInsideTheJunctionYieldsAtItsInternalJunction) {
   for (const bool inside : {false, true}) {
     SCOPED_TRACE(inside ? "internal junction" : "entry");
@@ -158,11 +159,17 @@ TEST(SceneStage, ATurnThatWaitsInsideTheJunctionYieldsAtItsInternalJunction) {
     const SceneBatch b = stage.Run(Observe(w, {"left"}));
     ASSERT_TRUE(b.EgoOf(0).stop_line.has_value());
     EXPECT_NEAR(b.EgoOf(0).stop_line->distance_m, inside ? 5.0 + 8.0 : 5.0, 1e-9);
-    // Off by default: the line stays at the entry.
+    // On by default; switched off, the line stays at the entry.
     SceneStage plain = Stage(w);
     const SceneBatch p = plain.Run(Observe(w, {"left"}));
     ASSERT_TRUE(p.EgoOf(0).stop_line.has_value());
-    EXPECT_NEAR(p.EgoOf(0).stop_line->distance_m, 5.0, 1e-9);
+    EXPECT_NEAR(p.EgoOf(0).stop_line->distance_m, inside ? 5.0 + 8.0 : 5.0, 1e-9);
+    SceneConfig off;
+    off.internal_junction_yield = false;
+    SceneStage entry(off, w.StepLength(), true, &w, &w);
+    const SceneBatch e = entry.Run(Observe(w, {"left"}));
+    ASSERT_TRUE(e.EgoOf(0).stop_line.has_value());
+    EXPECT_NEAR(e.EgoOf(0).stop_line->distance_m, 5.0, 1e-9);
   }
 }
 
