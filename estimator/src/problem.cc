@@ -469,6 +469,12 @@ std::optional<StopObligation> CredibleStop(const std::optional<StopLine>& line,
   return {};
 }
 
+// The constant acceleration that stops a vehicle at `speed` with its front at the line: -v^2 / 2d
+// (0 for a vehicle that stands).
+double StopAtLineAccel(double speed, const StopObligation& stop) {
+  return speed <= 0.0 ? 0.0 : -speed * speed / (2.0 * stop.distance_m);
+}
+
 // How hard another vehicle brakes to stop at a line as a matter of course: the comfortable
 // deceleration, or its type's normal largest deceleration where that is more and
 // Params::stop_obligation_at_once says it acts as SUMO's drivers do (they brake up to it to
@@ -487,9 +493,7 @@ double EgoReferenceWithStop(const Ego& ego, double a_ref, const Params& p) {
   const std::optional<StopObligation> stop =
       CredibleStop(ego.stop_line, ego.state, p, p.stop_comfortable_decel_mps2);
   if (!stop) return a_ref;
-  const double v = ego.state.speed_mps;
-  const double stopping = v <= 0.0 ? 0.0 : -v * v / (2.0 * stop->distance_m);
-  return std::fmin(a_ref, stopping);
+  return std::fmin(a_ref, StopAtLineAccel(ego.state.speed_mps, *stop));
 }
 
 // Where another vehicle's profiles start (held through the latency): its current acceleration, or
@@ -501,7 +505,7 @@ double ProfileStartAccel(const ObjectState& s, const std::optional<StopObligatio
   double start = s.accel_mps2;
   if (p.expected_accel_at_once) start = std::fmin(start, ExpectedAccelInForce(s, p));
   if (p.stop_obligation_at_once && stop && s.speed_mps > 0.0 && stop->distance_m > 0.0)
-    start = std::fmin(start, -s.speed_mps * s.speed_mps / (2.0 * stop->distance_m));
+    start = std::fmin(start, StopAtLineAccel(s.speed_mps, *stop));
   return start;
 }
 

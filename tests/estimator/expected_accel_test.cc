@@ -11,21 +11,24 @@
 namespace criticality {
 namespace {
 
-// The ego stopped in the middle lane of a straight three-lane road (waiting in a queue), a car
-// coming up behind it at 10 m/s, 15 m between bumpers, not braking yet: stopping behind the
-// ego 2.5 m back asks for 100 / (2 * 12.5) = 4 m/s^2.
-Scene StoppedEgoCarComingUpBehind() {
+// The ego stopped in the middle lane of a straight three-lane road, a car of the same length
+// coming up behind it at `speed` with `gap_m` between bumpers.
+Scene StoppedEgoAndCarBehind(double length_m, double gap_m, double speed) {
   Scene scene;
   scene.ego.lanes = bench::StraightThreeLanes();
-  scene.ego.length_m = 4.5;
+  scene.ego.length_m = length_m;
   Vehicle follower;
   follower.id = "follower";
-  follower.length_m = 4.5;
-  follower.state.x_m = -19.5;
-  follower.state.speed_mps = 10.0;
+  follower.length_m = length_m;
+  follower.state.x_m = -(length_m + gap_m);
+  follower.state.speed_mps = speed;
   scene.vehicles.push_back(follower);
   return scene;
 }
+
+// Waiting in a queue, a car coming up behind it at 10 m/s, 15 m between bumpers, not braking
+// yet: stopping behind the ego 2.5 m back asks for 100 / (2 * 12.5) = 4 m/s^2.
+Scene StoppedEgoCarComingUpBehind() { return StoppedEgoAndCarBehind(4.5, 15.0, 10.0); }
 
 TEST(ExpectedAccel, AFollowerExpectedToBrakeIsNotAThreat) {
   Scene scene = StoppedEgoCarComingUpBehind();
@@ -153,17 +156,9 @@ TEST(ExpectedAccel, BrakingWithoutAKnownCauseIsReleasedOnlyWhereTheCausesAreKnow
 // Catches a rule that is ignored (p stays), applied to the ego, or applied to an expectation
 // above the current acceleration.
 Scene FollowerAcceleratingTowardsAStandingCar() {
-  Scene scene;
-  scene.ego.lanes = bench::StraightThreeLanes();
-  scene.ego.length_m = 5.0;
-  Vehicle follower;
-  follower.id = "follower";
-  follower.length_m = 5.0;
-  follower.state.x_m = -(5.0 + 3.0);
-  follower.state.speed_mps = 4.3;
-  follower.state.accel_mps2 = 2.2;
-  follower.state.expected_accel_mps2 = -4.5;
-  scene.vehicles.push_back(follower);
+  Scene scene = StoppedEgoAndCarBehind(5.0, 3.0, 4.3);
+  scene.vehicles[0].state.accel_mps2 = 2.2;
+  scene.vehicles[0].state.expected_accel_mps2 = -4.5;
   return scene;
 }
 
