@@ -83,10 +83,12 @@ std::string LaneChangeTarget(const VehicleOnLane& v, RoadNetwork* network) {
   if (index < 0 || index >= network->LaneCount(own.edge)) return "";
   const std::string target = own.edge + "_" + std::to_string(index);
   if (!Allows(*network, target, v.vehicle_class)) return "";
+  // The front's place on the shape (SUMO's lane position scaled, OnShape, measured once), the
+  // centre half the body's length behind it.
   double at_front = 0.0, at_centre = 0.0;
-  const Point2 on = PointAlong(own.shape, OnShape(own, v.lane_position_m), &at_front);
-  PointAlong(own.shape, OnShape(own, std::fmax(0.0, v.lane_position_m - 0.5 * v.length_m)),
-             &at_centre);
+  const double front_on_shape = OnShape(own, v.lane_position_m);
+  const Point2 on = PointAlong(own.shape, front_on_shape, &at_front);
+  PointAlong(own.shape, std::fmax(0.0, front_on_shape - 0.5 * v.length_m), &at_centre);
   const double left_offset =
       std::cos(at_front) * (v.front.y - on.y) - std::sin(at_front) * (v.front.x - on.x);
   const double left_turn = WrapAngle(v.centre.yaw - at_centre);

@@ -326,7 +326,7 @@ double ObjectReader::GripYawRate(double speed_mps) const {
 
 bool ObjectReader::OffItsLane(const SumoObject& o) {
   const LaneInfo& lane = network_->Lane(o.lane);
-  const Point2 on = PointAlong(lane.shape, o.lane_position_m, nullptr);
+  const Point2 on = PointAlong(lane.shape, OnShape(lane, o.lane_position_m), nullptr);
   return std::hypot(o.x_m - on.x, o.y_m - on.y) > 0.5 * lane.width_m;
 }
 

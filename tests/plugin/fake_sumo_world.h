@@ -68,6 +68,11 @@ class FakeSumoWorld final : public SumoWorld {
     links_[from_lane].push_back(
         LaneLink{to_lane, via, std::move(state), has_foe, std::move(direction)});
   }
+  /** SUMO's length of `lane`, where netconvert's shape is longer or shorter than it (lane
+   *  positions run along this length, scaled onto the shape). */
+  void SetLaneLength(const std::string& lane, double length_m) {
+    lanes_.at(lane).length_m = length_m;
+  }
   void SetAllowed(const std::string& lane, std::vector<std::string> classes) {
     allowed_[lane] = std::move(classes);
   }

@@ -462,6 +462,23 @@ TEST(SceneStage, AParkedVehicleIsNoEgoAndBesideTheRoadNoObject) {
   EXPECT_EQ(stage.parked_egos(), 3);
 }
 
+// "Off its lane" measures the parked vehicle from its lane position scaled onto the lane's shape
+// (OnShape), as SUMO places it: on a lane whose shape is twice SUMO's length, a car parked on the
+// lane at lane position 100 stands 200 m along the shape, on the lane, an obstacle.
+TEST(SceneStage, AVehicleParkedOnALaneWhoseShapeIsLongerThanItsLengthIsOnIt) {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 0, 300, 0, 1);
+  w.SetLaneLength("E_0", 150.0);
+  w.AddVehicle("ego", 150, 0, 90, 10, "E_0", 75, {"E"});
+  w.AddVehicle("parked", 200, 0, 90, 0, "E_0", 100, {"E"}).stop_state = 2;
+  SceneStage stage = Stage(w);
+  const SceneBatch b = stage.Run(Observe(w, {"ego"}));
+  std::vector<std::string> objects;
+  for (const Vehicle& v : b.scenes.at(0).vehicles) objects.push_back(v.id);
+  EXPECT_EQ(objects, (std::vector<std::string>{"parked"}));
+  EXPECT_EQ(stage.parked_objects(), 0);
+}
+
 TEST(SceneStage, AHeadingJumpSumoCouldNotDriveIsReplacedByTheLanesYawRate) {
   FakeSumoWorld w(0.1);
   w.AddEdge("E", 0, 0, 300, 0, 1);
