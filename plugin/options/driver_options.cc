@@ -189,7 +189,9 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_crossing_obligations) o->scenes.crossing_obligations = false;
   if (raw.no_crossing_stops) o->scenes.crossing_stops = false;
   if (raw.no_yield_stops) o->scenes.yield_stops = false;
-  if (raw.internal_junction_yield) o->scenes.internal_junction_yield = true;
+  if (raw.internal_junction_yield && raw.no_internal_junction_yield)
+    Bad("--internal-junction-yield and --no-internal-junction-yield: choose one (the first is "
+        "the default)");
   if (raw.no_internal_junction_yield) o->scenes.internal_junction_yield = false;
   if (raw.no_heading_hold) o->scenes.heading_hold = false;
   if (raw.no_way_heading) o->scenes.way_heading = false;

@@ -347,6 +347,12 @@ TEST(DriverOptions, EachStageGetsItsConfigFromTheOptionsAndTheFinalParameters) {
   EXPECT_FALSE(
       Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--no-internal-junction-yield"})
           .options.scenes.internal_junction_yield);
+  EXPECT_TRUE(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--internal-junction-yield"})
+                  .options.scenes.internal_junction_yield);
+  EXPECT_NE(ErrorOf({"--connect", "h:1", "--ego", "e", "--output", "x", "--internal-junction-yield",
+                     "--no-internal-junction-yield"})
+                .find("choose one"),
+            std::string::npos);
   const ParseOutcome asked =
       Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--lane-corner-in-turn",
              "--no-expected-accel-at-once", "--no-stop-at-once"});
