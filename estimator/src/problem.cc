@@ -26,11 +26,24 @@ struct LateralSample {
   int lane{0};  ///< -1 right, 0 own, +1 left
 };
 
+// Params::hold_line_max_width_share: the fraction across its own lane (0 at the right divider,
+// 1 at the left) at which a narrow vehicle rides and holds its line, kept its half width inside
+// the dividers; -1 where it is not that narrow (or the rule is off): it heads for the centre.
+double HeldLineFraction(const FittedLanes& lanes, double half_width, const Params& p) {
+  if (p.hold_line_max_width_share <= 0.0 || !lanes.own) return -1.0;
+  const double right = lanes.own->right.OffsetFrom(0.0, 0.0);
+  const double width = lanes.own->left.OffsetFrom(0.0, 0.0) - right;
+  if (!(width > 0.0) || 2.0 * half_width > p.hold_line_max_width_share * width) return -1.0;
+  const double margin = half_width / width;
+  return core::Clamp(-right / width, margin, 1.0 - margin);
+}
+
 // Lateral samples right to left: neighbour_lane_samples across the right lane, own_lane_samples
 // across the own lane, neighbour_lane_samples across the left lane, each equally distributed
-// over its lane's width (fractions i / (n + 1)).
+// over its lane's width (fractions i / (n + 1)); the own lane's sample nearest to `held`
+// (HeldLineFraction, when >= 0) moves there.
 std::vector<LateralSample> LateralSamples(const FittedLanes& lanes, const Params& p,
-                                          bool centre_only) {
+                                          bool centre_only, double held) {
   std::vector<LateralSample> out;
   if (centre_only) {  // bound to its track: its own lane's centre
     out.push_back({lanes.own->Centre(), lanes.own->counter_traffic, 0});
@@ -38,8 +51,17 @@ std::vector<LateralSample> LateralSamples(const FittedLanes& lanes, const Params
   }
   auto add = [&](const std::optional<FittedLane>& lane, int n, int index) {
     if (!lane) return;
+    int nearest = 0;  // the sample that moves to the held line (own lane only)
     for (int i = 1; i <= n; ++i) {
-      out.push_back({lane->At(static_cast<double>(i) / (n + 1)), lane->counter_traffic, index});
+      if (std::fabs(static_cast<double>(i) / (n + 1) - held) <
+          std::fabs(static_cast<double>(nearest) / (n + 1) - held)) {
+        nearest = i;
+      }
+    }
+    for (int i = 1; i <= n; ++i) {
+      const double f =
+          index == 0 && held >= 0.0 && i == nearest ? held : static_cast<double>(i) / (n + 1);
+      out.push_back({lane->At(f), lane->counter_traffic, index});
     }
   };
   add(lanes.right, p.neighbour_lane_samples, -1);
@@ -277,7 +299,8 @@ std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool 
                                 double a_ref, core::HypothesisSet* h,
                                 std::vector<int>* sample_lanes = nullptr,
                                 bool centre_only = false) {
-  const std::vector<LateralSample> samples = LateralSamples(lanes, p, centre_only);
+  const double held = centre_only ? -1.0 : HeldLineFraction(lanes, h->half_width, p);
+  const std::vector<LateralSample> samples = LateralSamples(lanes, p, centre_only, held);
   const int n_lat = static_cast<int>(samples.size());
   const int n_inst = static_cast<int>(p.path_sample_times_s.size());
   h->n_instants = n_inst;
@@ -298,9 +321,9 @@ std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool 
   }
   h->n_paths = n_paths;
 
-  // Offsets of each sample from the own lane's centre where the reference trajectory is at
-  // each sample instant.
-  const core::Parabola centre = lanes.own->Centre();
+  // Offsets of each sample from the own lane's centre (or the held line) where the reference
+  // trajectory is at each sample instant.
+  const core::Parabola centre = held >= 0.0 ? lanes.own->At(held) : lanes.own->Centre();
   h->reference_path = centre;
   h->steer_feedforward = TurningAlongLane(*h, centre, p);
   std::vector<double> offset(static_cast<size_t>(n_inst) * n_lat);

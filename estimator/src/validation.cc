@@ -166,6 +166,7 @@ void ValidateParams(const Params& p) {
   }
   RequireRange("params.own_lane_samples", p.own_lane_samples, 1, 8);
   RequireRange("params.neighbour_lane_samples", p.neighbour_lane_samples, 0, 4);
+  RequireRange("params.hold_line_max_width_share", p.hold_line_max_width_share, 0.0, 1.0);
   if (p.LateralSamplesThreeLanes() > core::kMaxLateralSamples) {
     Fail("params.own_lane_samples + 2 * neighbour_lane_samples", p.LateralSamplesThreeLanes(),
          "must be at most " + std::to_string(core::kMaxLateralSamples));
@@ -263,6 +264,7 @@ Params ParamsPreset(const std::string& name) {
     p.curve_speed_reference = false;
     p.straight_before_turn = false;
     p.straight_before_turn_by_fit = false;
+    p.hold_line_max_width_share = 0.0;
     p.lane_fit_within_lane = false;
     p.expected_accel_at_once = false;
     p.stop_obligation_at_once = false;

@@ -176,6 +176,7 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_car_following) p.expected_accel_reference = false;
   if (raw.no_lane_fit_check) p.lane_fit_within_lane = false;
   if (raw.no_straight_by_fit) p.straight_before_turn_by_fit = false;
+  if (raw.no_hold_line) p.hold_line_max_width_share = 0.0;
   if (raw.lane_corners) p.lane_corners = true;
   if (raw.lane_corner_in_turn) p.lane_corner_in_turn = true;
   if (raw.no_expected_accel_at_once) p.expected_accel_at_once = false;

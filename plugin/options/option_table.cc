@@ -254,6 +254,10 @@ void OptionTable::ModelChoices() {
       "travel) leads into a turn, take the middle samples at the middle of the reach; by "
       "default they go to the straight's end instead where that fit keeps closer to the road "
       "(estimator Params::straight_before_turn_by_fit)")(
+      "no-hold-line", po::bool_switch(&raw.no_hold_line),
+      "ablation (ours): every vehicle heads for its lane's centre (the paper); by default a "
+      "vehicle at most a third of its lane's width wide (a bicycle in a car lane) holds the line "
+      "it rides in its lane (estimator Params::hold_line_max_width_share)")(
       "lane-corners", po::bool_switch(&raw.lane_corners),
       "experimental (ours, off by default): a lane that turns by 15 degrees or more over its "
       "sampled reach is sent as a corner (straight, a parabola tangent to both straights, "

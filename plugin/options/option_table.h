@@ -24,7 +24,7 @@ struct RawOptions {
       no_lane_fit_check{false}, lane_corners{false}, no_lane_heading_yaw_rate{false},
       no_straight_by_fit{false}, no_hand_back_check{false}, lane_change_target{false},
       no_lane_change_yaw_rate{false}, lane_corner_in_turn{false}, no_expected_accel_at_once{false},
-      no_stop_at_once{false};
+      no_stop_at_once{false}, no_hold_line{false};
   bool no_progress{false}, no_shortcut{false}, no_crossing_obligations{false},
       no_crossing_stops{false}, no_yield_stops{false}, no_heading_hold{false},
       no_way_heading{false}, junction_shapes{false}, no_junction_shapes{false}, bent_bodies{false},

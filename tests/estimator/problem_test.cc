@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 
 #include "bench/paper_scenes.h"
 #include "core/hypothesis_set.h"
@@ -298,6 +299,84 @@ TEST(Problem, PresetsAreNamed) {
     EXPECT_NE(msg.find("preset = 'calibrated'"), std::string::npos) << msg;
     EXPECT_NE(msg.find("default or paper-literal"), std::string::npos) << msg;
   }
+}
+
+// Params::hold_line_max_width_share: a narrow vehicle holds the line it rides in its lane.
+// A cyclist `kerb_m` from the right divider of the ego's 3.5 m lane, 12 m ahead of the ego
+// (which rides in the lane's middle), its lanes given in its own frame.
+Scene CyclistAtTheKerb(double kerb_m) {
+  Scene s = bench::PaperSceneS1();
+  s.vehicles.resize(1);  // the lead car, 30 m ahead in the ego lane
+  Vehicle bike;
+  bike.id = "bike";
+  bike.type.road_user = RoadUser::kBicycle;
+  bike.state.x_m = 12.0;
+  bike.state.y_m = -0.5 * bench::kLaneWidth + kerb_m;
+  bike.state.speed_mps = 5.0;
+  bike.length_m = 1.6;
+  bike.width_m = 0.65;
+  LaneSet lanes = bench::StraightThreeLanes();
+  for (std::optional<Lane>* lane : {&lanes.own, &lanes.left, &lanes.right}) {
+    for (LaneDivider* d : {&(*lane)->left, &(*lane)->right}) {
+      for (Point2& q : d->points) q.y -= bike.state.y_m;  // seen from the cyclist
+    }
+  }
+  bike.lanes = lanes;
+  s.vehicles.push_back(bike);
+  return s;
+}
+
+TEST(Problem, ANarrowVehicleHoldsTheLineItRidesInItsLaneACarHeadsForTheCentre) {
+  const Params p;
+  ASSERT_GT(p.hold_line_max_width_share, 0.0);
+  const Problem pb = BuildProblem(CyclistAtTheKerb(0.5), p);
+  ASSERT_EQ(pb.cos.size(), 2u);
+  const core::HypothesisSet& bike = pb.cos[1];
+  // Its reference path runs through it, parallel to the lane (the paper's: the lane's centre,
+  // 1.25 m to its left).
+  EXPECT_NEAR(bike.reference_path.Eval(0.0), 0.0, 1e-9);
+  EXPECT_NEAR(bike.reference_path.Eval(30.0), 0.0, 1e-9);
+  // Its own lane's samples (after the right lane's two): the one nearest to its line (a
+  // quarter across) moved there, the middle and three quarters as in the paper.
+  ASSERT_EQ(bike.n_lateral, 7);
+  const double right = -0.5;  // its own lane's right divider, seen from it
+  EXPECT_NEAR(bike.section[0][2].Eval(20.0), 0.0, 1e-9);
+  EXPECT_NEAR(bike.section[0][3].Eval(20.0), right + 0.5 * bench::kLaneWidth, 1e-9);
+  EXPECT_NEAR(bike.section[0][4].Eval(20.0), right + 0.75 * bench::kLaneWidth, 1e-9);
+  // Its most probable path is the held line.
+  const auto best = std::max_element(pb.co_probability.begin() + pb.co_offset[1],
+                                     pb.co_probability.begin() + pb.co_offset[1 + 1]);
+  EXPECT_EQ((best - (pb.co_probability.begin() + pb.co_offset[1])) % bike.n_paths, 2);
+  // The lead car (1.8 m wide in a 3.5 m lane) is not narrow: its lane's centre.
+  EXPECT_NEAR(pb.cos[0].reference_path.Eval(20.0), 0.0, 1e-9);
+  EXPECT_NEAR(pb.cos[0].section[0][2].Eval(20.0), -0.25 * bench::kLaneWidth, 1e-9);
+
+  // Closer to the kerb than its half width: held its half width inside the divider.
+  const Problem kerb = BuildProblem(CyclistAtTheKerb(0.1), p);
+  EXPECT_NEAR(kerb.cos[1].reference_path.Eval(20.0), 0.325 - 0.1, 1e-9);
+
+  // Off (and in paper-literal): the lane's centre, the paper's quarter samples.
+  Params off = p;
+  off.hold_line_max_width_share = 0.0;
+  for (const Params& q : {off, ParamsPreset("paper-literal")}) {
+    const Problem centre = BuildProblem(CyclistAtTheKerb(0.5), q);
+    EXPECT_NEAR(centre.cos[1].reference_path.Eval(20.0), right + 0.5 * bench::kLaneWidth, 1e-9);
+    EXPECT_NEAR(centre.cos[1].section[0][2].Eval(20.0), right + 0.25 * bench::kLaneWidth, 1e-9);
+  }
+}
+
+// The consequence: the ego passing a cyclist who keeps 0.4 m from the kerb, 0.13 m clear of
+// its right side, is judged far less likely to collide when the cyclist holds its line than
+// when it is predicted into the lane's middle (0.66 against 0.87 when written).
+TEST(Problem, ACarPassingACyclistAtTheKerbIsLessCriticalWhenTheCyclistHoldsItsLine) {
+  Scene scene = CyclistAtTheKerb(0.4);
+  scene.ego.state.speed_mps = 12.0;
+  scene.vehicles[0].state.x_m = 80.0;  // the lead car far ahead
+  Params off;
+  off.hold_line_max_width_share = 0.0;
+  const double held = testing::PCollision(scene), centre = testing::PCollision(scene, off);
+  EXPECT_LT(held, centre - 0.15);
+  EXPECT_LT(held, 0.9);  // below the driver's default warning threshold
 }
 
 }  // namespace

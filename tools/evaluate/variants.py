@@ -79,6 +79,10 @@ VARIANTS = [
             "ours taking a short straight's (2-15 m) middle samples at the middle of the reach, "
             "not at the straight's end where that fits the road better (--no-straight-by-fit)",
             {"act": "warn", "no-straight-by-fit": "true"}),
+    Variant("no-hold-line",
+            "ours with every vehicle heading for its lane's centre, a cyclist at the kerb too, "
+            "not holding the line it rides (--no-hold-line)",
+            {"act": "warn", "no-hold-line": "true"}),
     Variant("lane-corners",
             "experiment (ours): lanes that turn are sent as corners: straight, a parabola "
             "tangent to both straights, straight (--lane-corners)",

@@ -70,6 +70,15 @@ struct Params {
    *  (every combination of sections) and 7 paths per other vehicle (no combination). */
   int own_lane_samples{3};
   int neighbour_lane_samples{2};
+  /** Narrow vehicles hold their line: where a vehicle is at most this share of its own lane's
+   *  width wide (a bicycle or a motorcycle in a car lane, with room for two more beside it; a
+   *  car in a wide lane is not), the own-lane sample nearest to where
+   *  it rides becomes that place (kept its half width inside the dividers), and its reference
+   *  path runs there instead of along the lane's centre: a cyclist riding at the right edge is
+   *  predicted to keep there, not to steer into the middle of the lane beside the car passing
+   *  it. Observable: its width and its place between its lane's dividers. 0: off (the paper:
+   *  every vehicle heads for its lane's centre). paper-literal: 0. Driver: --no-hold-line. */
+  double hold_line_max_width_share{1.0 / 3.0};
 
   // --- Pedestrians (paper Sec. IV-B-3) ---
   /** Headings sampled over 0..360 deg, relative to the current heading. Paper: as many as the

@@ -334,6 +334,15 @@ TEST(DriverOptions, EachStageGetsItsConfigFromTheOptionsAndTheFinalParameters) {
   EXPECT_FALSE(no_fit.options.params.straight_before_turn_by_fit);
   EXPECT_FALSE(no_fit.options.scenes.lane_sampling.straight_by_fit);
   EXPECT_TRUE(no_fit.options.scenes.lane_sampling.straight_before_turn);
+  // Narrow vehicles hold their line: on by default (a third of the lane's width), off with its
+  // switch and in paper-literal.
+  EXPECT_EQ(Parse({"--connect", "h:1", "--ego", "e", "--output", "x"})
+                .options.params.hold_line_max_width_share,
+            1.0 / 3.0);
+  EXPECT_EQ(Parse({"--connect", "h:1", "--ego", "e", "--output", "x", "--no-hold-line"})
+                .options.params.hold_line_max_width_share,
+            0.0);
+  EXPECT_EQ(d.params.hold_line_max_width_share, 0.0);
   // The other vehicles' expected braking at once: on by default, off with its switch and in
   // paper-literal; a tight turn's corner: an experiment, on only when asked for.
   const ParseOutcome plain = Parse({"--connect", "h:1", "--ego", "e", "--output", "x"});
