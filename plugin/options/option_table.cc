@@ -213,6 +213,10 @@ void OptionTable::ModelChoices() {
       "junction-shapes", po::bool_switch(&raw.junction_shapes),
       "the default since 2026-12-05 (lanes through a junction along its internal lanes); "
       "accepted so that older campaign files still run")(
+      "no-sumo-box", po::bool_switch(&raw.no_sumo_box),
+      "ablation (ours): a vehicle's box is its length from its front along SUMO's angle, "
+      "reaching past its back in a tight turn; by default it is SUMO's box, from its front to "
+      "its back on its way, shorter than the vehicle where that way bends")(
       "bodies-on-path", po::bool_switch(&raw.bodies_on_path),
       "experimental (ours, off by default: it did not help the held-out networks as a whole, "
       "bench/RESULTS.md): every vehicle of one box (no carriages) is SUMO's box of it (front to "
@@ -245,6 +249,27 @@ void OptionTable::ModelChoices() {
       "steps, where SUMO looks for collisions (by default, with SUMO's Euler position update, "
       "the estimator reads SUMO's step length for this; estimator "
       "Params::collisions_at_world_steps)")(
+      "no-expected-accel-at-once", po::bool_switch(&raw.no_expected_accel_at_once),
+      "ablation (ours): another vehicle's hypotheses hold its current acceleration through "
+      "the reaction latency also where its expected (car-following) acceleration is lower; by "
+      "default they start from the expected one, as SUMO's drivers act in their next step "
+      "(the ego keeps its latency; estimator Params::expected_accel_at_once; reads SUMO's "
+      "driver model)")(
+      "no-stop-at-once", po::bool_switch(&raw.no_stop_at_once),
+      "ablation (ours): another vehicle with a credible stop line (a red light, a yield line "
+      "with a foe) holds its current acceleration through the reaction latency and counts as "
+      "complying only while 3.4 m/s^2 stops it; by default it brakes for the line from now, "
+      "up to its type's decel, as SUMO's drivers do (the ego keeps its latency; estimator "
+      "Params::stop_obligation_at_once; reads SUMO's driver model)")(
+      "no-car-following", po::bool_switch(&raw.no_car_following),
+      "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
+      "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)");
+  LaneChoices(&m);
+  all_.add(m);
+}
+
+void OptionTable::LaneChoices(po::options_description* m) {
+  m->add_options()(
       "no-lane-fit-check", po::bool_switch(&raw.no_lane_fit_check),
       "ablation (ours): use a lane's three samples over the full reach even where the parabola "
       "through them leaves the lane between them (by default such a lane is sampled over a "
@@ -265,23 +290,7 @@ void OptionTable::ModelChoices() {
       "lane-corner-in-turn", po::bool_switch(&raw.lane_corner_in_turn),
       "experimental (ours, off by default): a vehicle in a junction turn too tight for its "
       "lane's three samples (the inner divider folds back) gets its lanes as a corner from "
-      "where it is instead of none (a virtual lane) (estimator Params::lane_corner_in_turn)")(
-      "no-expected-accel-at-once", po::bool_switch(&raw.no_expected_accel_at_once),
-      "ablation (ours): another vehicle's hypotheses hold its current acceleration through "
-      "the reaction latency also where its expected (car-following) acceleration is lower; by "
-      "default they start from the expected one, as SUMO's drivers act in their next step "
-      "(the ego keeps its latency; estimator Params::expected_accel_at_once; reads SUMO's "
-      "driver model)")(
-      "no-stop-at-once", po::bool_switch(&raw.no_stop_at_once),
-      "ablation (ours): another vehicle with a credible stop line (a red light, a yield line "
-      "with a foe) holds its current acceleration through the reaction latency and counts as "
-      "complying only while 3.4 m/s^2 stops it; by default it brakes for the line from now, "
-      "up to its type's decel, as SUMO's drivers do (the ego keeps its latency; estimator "
-      "Params::stop_obligation_at_once; reads SUMO's driver model)")(
-      "no-car-following", po::bool_switch(&raw.no_car_following),
-      "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
-      "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)");
-  all_.add(m);
+      "where it is instead of none (a virtual lane) (estimator Params::lane_corner_in_turn)");
 }
 
 void OptionTable::Output(DriverOptions* o) {

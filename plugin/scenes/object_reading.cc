@@ -163,11 +163,12 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
            IsBent(o.length_m, ChordOf(way, o.length_m));
     if (bent) body = PlanBentBody(o.length_m);
   }
-  // With --bent-bodies or --bodies-on-path one box is SUMO's box of the body (front to back,
-  // BodyLengthOf), which a bend leaves shorter than the vehicle.
+  // One box is SUMO's box of the body (front to back, BodyLengthOf; shorter in a bend):
+  // SceneConfig::sumo_box, always with --bent-bodies and --bodies-on-path.
   const bool one_box = body.carriage_lengths_m.empty();
-  s.length_m = one_box && (config_.bent_bodies || config_.bodies_on_path) ? BodyLengthOf(o)
-                                                                          : body.head_length_m;
+  s.length_m = one_box && (config_.bent_bodies || config_.bodies_on_path || config_.sumo_box)
+                   ? BodyLengthOf(o)
+                   : body.head_length_m;
   s.width_m = o.width_m;
   if (o.height_m > 0.0) s.height_m = o.height_m;
   // Just past a junction, after a lane change within one step: the heading of the way its new

@@ -72,6 +72,15 @@ struct SceneConfig {
    *  centre follows). Off: a box of the vehicle's length from its front along SUMO's angle,
    *  predicted centred on its path. */
   bool bodies_on_path{false};
+  /** A vehicle of one box (no carriages) is SUMO's box of it: from its front to its back on the
+   *  way behind it (BodyLengthOf, the chord: shorter than the vehicle where that way bends,
+   *  in a tight turn), centred between them along SUMO's angle, and predicted as every box is.
+   *  Off (--no-sumo-box): a box of the vehicle's length from its front along SUMO's angle,
+   *  which in a tight turn reaches past the body's back (traced at a spider's centre, where
+   *  SUMO turns a car through 110 degrees at 1.3 m radius: the long box overlapped a car that
+   *  SUMO's box of it cleared; bench/RESULTS.md, twentieth stop). Where the body stands, which
+   *  sensors see: observable_only keeps it. */
+  bool sumo_box{true};
   /** A vehicle's heading that SUMO turns faster than the vehicle can (beyond v r <= mu g since
    *  the previous step) is held for up to kMaxHeadingHoldS where SUMO's lane changes are
    *  instantaneous, and on or just off a junction's internal lane (ObjectReader::HeadingOf);

@@ -83,6 +83,10 @@ VARIANTS = [
             "ours with every vehicle heading for its lane's centre, a cyclist at the kerb too, "
             "not holding the line it rides (--no-hold-line)",
             {"act": "warn", "no-hold-line": "true"}),
+    Variant("no-sumo-box",
+            "ours with every vehicle's box its full length from its front along SUMO's angle, "
+            "not SUMO's box from front to back on a bent way (--no-sumo-box)",
+            {"act": "warn", "no-sumo-box": "true"}),
     Variant("lane-corners",
             "experiment (ours): lanes that turn are sent as corners: straight, a parabola "
             "tangent to both straights, straight (--lane-corners)",

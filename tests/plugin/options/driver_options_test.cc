@@ -197,6 +197,9 @@ TEST(DriverOptions, PresetAblationsAndWarningEstimate) {
   EXPECT_TRUE(with({"--bent-bodies"}).scenes.bent_bodies);
   EXPECT_FALSE(d.scenes.bodies_on_path);
   EXPECT_TRUE(with({"--bodies-on-path"}).scenes.bodies_on_path);
+  EXPECT_TRUE(d.scenes.sumo_box);
+  EXPECT_FALSE(with({"--no-sumo-box"}).scenes.sumo_box);
+  EXPECT_FALSE(with({"--no-sumo-box"}).scenes.bodies_on_path);
   // A shorter horizon scales the path sample instants (1.0, 1.5, 2.0 of 2 s).
   const DriverOptions h = with({"--horizon", "1.5"});
   EXPECT_EQ(h.params.horizon_s, 1.5);

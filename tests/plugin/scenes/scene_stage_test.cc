@@ -336,24 +336,37 @@ TEST(SceneStage, ABodyBentByATurnIsAChainOfBoxesAlongItsWay) {
   EXPECT_DOUBLE_EQ(as_ego.ego.length_m, 4.0);
   EXPECT_NEAR(as_ego.ego.state.yaw_rad, 0.0, 1e-9);
   EXPECT_TRUE(as_ego.ego.lanes.own.has_value());
-  // By default: one 12 m box along SUMO's angle, reaching back across both lanes.
-  const Scene o = read(SceneConfig{}, "ego");
+  // By default: SUMO's box, front to back, centred between them, predicted as every box is.
+  const Scene q = read(SceneConfig{}, "ego");
+  EXPECT_FALSE(q.bodies_on_path);
+  const Vehicle* qb = VehicleIn(q, "bus");
+  ASSERT_NE(qb, nullptr);
+  EXPECT_NEAR(qb->length_m, std::hypot(6.0, 6.0), 1e-9);
+  EXPECT_NEAR(qb->state.x_m, 3.0, 1e-9);  // between the front (6, 5) and the back (0, -1)
+  EXPECT_NEAR(qb->state.y_m, 2.0, 1e-9);
+  EXPECT_NEAR(qb->state.yaw_rad, kPi / 4, 1e-9);
+  EXPECT_TRUE(qb->carriages.empty());
+  // With --no-sumo-box: one 12 m box along SUMO's angle, reaching back across both lanes.
+  SceneConfig long_box;
+  long_box.sumo_box = false;
+  const Scene o = read(long_box, "ego");
   const Vehicle* ob = VehicleIn(o, "bus");
   ASSERT_NE(ob, nullptr);
   EXPECT_DOUBLE_EQ(ob->length_m, 12.0);
   EXPECT_NEAR(ob->state.yaw_rad, kPi / 4, 1e-9);
+  EXPECT_NEAR(ob->state.x_m, 6.0 - 6.0 * std::sqrt(0.5), 1e-9);  // 6 m back from the front
   EXPECT_TRUE(ob->carriages.empty());
   EXPECT_FALSE(o.bodies_on_path);
-  // With --bodies-on-path: SUMO's box, front to back, centred between them, and the scene
-  // says so (the estimator predicts it as the chord of its path).
-  SceneConfig on_path;
+  // With --bodies-on-path (even with --no-sumo-box): SUMO's box, and the scene says so (the
+  // estimator predicts it as the chord of its path).
+  SceneConfig on_path = long_box;
   on_path.bodies_on_path = true;
   const Scene p = read(on_path, "ego");
   EXPECT_TRUE(p.bodies_on_path);
   const Vehicle* pb = VehicleIn(p, "bus");
   ASSERT_NE(pb, nullptr);
   EXPECT_NEAR(pb->length_m, std::hypot(6.0, 6.0), 1e-9);
-  EXPECT_NEAR(pb->state.x_m, 3.0, 1e-9);  // between the front (6, 5) and the back (0, -1)
+  EXPECT_NEAR(pb->state.x_m, 3.0, 1e-9);
   EXPECT_NEAR(pb->state.y_m, 2.0, 1e-9);
   EXPECT_NEAR(pb->state.yaw_rad, kPi / 4, 1e-9);
   EXPECT_TRUE(pb->carriages.empty());
