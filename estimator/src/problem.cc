@@ -51,8 +51,8 @@ std::vector<LateralSample> LateralSamples(const FittedLanes& lanes, const Params
   }
   auto add = [&](const std::optional<FittedLane>& lane, int n, int index) {
     if (!lane) return;
-    int nearest = 0;  // the sample that moves to the held line (own lane only)
-    for (int i = 1; i <= n; ++i) {
+    int nearest = 1;  // the sample that moves to the held line (own lane only)
+    for (int i = 2; i <= n; ++i) {
       if (std::fabs(static_cast<double>(i) / (n + 1) - held) <
           std::fabs(static_cast<double>(nearest) / (n + 1) - held)) {
         nearest = i;

@@ -351,9 +351,12 @@ TEST(Problem, ANarrowVehicleHoldsTheLineItRidesInItsLaneACarHeadsForTheCentre) {
   EXPECT_NEAR(pb.cos[0].reference_path.Eval(20.0), 0.0, 1e-9);
   EXPECT_NEAR(pb.cos[0].section[0][2].Eval(20.0), -0.25 * bench::kLaneWidth, 1e-9);
 
-  // Closer to the kerb than its half width: held its half width inside the divider.
+  // Closer to the kerb than its half width: held its half width inside the divider, and the
+  // quarter sample (the nearest, though nearer the held line than the divider is) moves there.
   const Problem kerb = BuildProblem(CyclistAtTheKerb(0.1), p);
   EXPECT_NEAR(kerb.cos[1].reference_path.Eval(20.0), 0.325 - 0.1, 1e-9);
+  EXPECT_NEAR(kerb.cos[1].section[0][2].Eval(20.0), 0.325 - 0.1, 1e-9);
+  EXPECT_NEAR(kerb.cos[1].section[0][3].Eval(20.0), -0.1 + 0.5 * bench::kLaneWidth, 1e-9);
 
   // Off (and in paper-literal): the lane's centre, the paper's quarter samples.
   Params off = p;
