@@ -51,16 +51,12 @@ std::vector<LateralSample> LateralSamples(const FittedLanes& lanes, const Params
   }
   auto add = [&](const std::optional<FittedLane>& lane, int n, int index) {
     if (!lane) return;
-    int nearest = 1;  // the sample that moves to the held line (own lane only)
-    for (int i = 2; i <= n; ++i) {
-      if (std::fabs(static_cast<double>(i) / (n + 1) - held) <
-          std::fabs(static_cast<double>(nearest) / (n + 1) - held)) {
-        nearest = i;
-      }
-    }
+    // The own-lane sample nearest to the held line (the lower one on a tie), 0 for none.
+    const int moved = index == 0 && held >= 0.0
+                          ? std::clamp(static_cast<int>(std::ceil(held * (n + 1) - 0.5)), 1, n)
+                          : 0;
     for (int i = 1; i <= n; ++i) {
-      const double f =
-          index == 0 && held >= 0.0 && i == nearest ? held : static_cast<double>(i) / (n + 1);
+      const double f = i == moved ? held : static_cast<double>(i) / (n + 1);
       out.push_back({lane->At(f), lane->counter_traffic, index});
     }
   };
@@ -321,17 +317,17 @@ std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool 
   }
   h->n_paths = n_paths;
 
-  // Offsets of each sample from the own lane's centre (or the held line) where the reference
-  // trajectory is at each sample instant.
-  const core::Parabola centre = held >= 0.0 ? lanes.own->At(held) : lanes.own->Centre();
-  h->reference_path = centre;
-  h->steer_feedforward = TurningAlongLane(*h, centre, p);
+  // The reference path: the own lane's centre, or the held line. Offsets of each sample from
+  // it where the reference trajectory is at each sample instant.
+  const core::Parabola reference = held >= 0.0 ? lanes.own->At(held) : lanes.own->Centre();
+  h->reference_path = reference;
+  h->steer_feedforward = TurningAlongLane(*h, reference, p);
   std::vector<double> offset(static_cast<size_t>(n_inst) * n_lat);
   for (int k = 0; k < n_inst; ++k) {
     const double x =
-        core::XAfterArc(centre, 0.0, ReferenceDistance(h->v0, a_ref, p.path_sample_times_s[k]));
+        core::XAfterArc(reference, 0.0, ReferenceDistance(h->v0, a_ref, p.path_sample_times_s[k]));
     for (int l = 0; l < n_lat; ++l) {
-      offset[k * n_lat + l] = std::fabs(samples[l].curve.Eval(x) - centre.Eval(x));
+      offset[k * n_lat + l] = std::fabs(samples[l].curve.Eval(x) - reference.Eval(x));
     }
   }
   std::vector<PathScore> scores(n_paths);
