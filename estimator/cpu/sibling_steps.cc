@@ -315,10 +315,32 @@ void HoldPoses(SiblingSpan* span, int first, int count, int n, const double* bx,
 // the course (v - v0) * position_lead is 0 when v0 = 0 or there is none. Only the steering
 // angle and the kinematic sideslip would move, and they move no pose while v stays 0; the
 // lanes' end states keep the values of the step where the standstill began (the children of a
-// tree node start from them, and stand as well: their profile is the same).
+// tree node start from them, and stand as well: their profile is the same). With held poses
+// (pose_hold_steps > 1) a lane stands for good only where it stands at its held pose
+// (StandsAtHeldPose): every later step, held or not, is then that pose.
 bool StandstillMayHold(const core::HypothesisSet& h) {
   return h.seam_speed > 0.0 && h.rate >= 0.0 && (h.position_lead <= 0.0 || h.v0 == 0.0) &&
          (h.pose_hold_steps <= 1 || h.v0 == 0.0);  // held poses: the same pose throughout
+}
+
+// With held poses: whether lanes [first, first + count) stand where their held pose is (centre
+// and yaw, bit for bit), as a vehicle that has not moved since the world last looked does. Then
+// the held pose's cos/sin go into bc, bs for the steps to come: the step's own cos/sin of the
+// same yaw come by angle addition from the frame's and may differ from the held ones (cos of
+// the yaw) in the last bit, and a pose that changes in its last bit is not still to the
+// still-subtree shortcut of the collision walk (CpuBackend::RecognizeCollisions).
+bool StandsAtHeldPose(SiblingSpan* span, int first, int count, const double* bx, const double* by,
+                      const double* byaw, double* bc, double* bs) {
+  for (int l = 0; l < count; ++l) {
+    const core::SimulationState& st = span->state[first + l];
+    if (bx[l] != st.held_x || by[l] != st.held_y || byaw[l] != st.held_yaw) return false;
+  }
+  if (bc == nullptr) return true;
+  for (int l = 0; l < count; ++l) {
+    bc[l] = span->state[first + l].held_c;
+    bs[l] = span->state[first + l].held_s;
+  }
+  return true;
 }
 
 // Whether every lane's state after a step is at rest (the rest of the rule: StandstillMayHold
@@ -615,7 +637,9 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       hn::StoreU(wy, d, by);
       hn::StoreU(wyaw, d, byaw);
       StorePoses(span, first, count, n, bx, by, byaw, heading_trig ? bc : nullptr, bs);
-      if (can_stand && brakes_for_good && StandsStill(d, nv, nax, nay, nyr)) {
+      if (can_stand && brakes_for_good && StandsStill(d, nv, nax, nay, nyr) &&
+          (h.pose_hold_steps <= 1 ||
+           StandsAtHeldPose(span, first, count, bx, by, byaw, heading_trig ? bc : nullptr, bs))) {
         // The rest of the span holds this pose; the instants still advance as step by step.
         for (int m = n + 1; m < span->n_end; ++m) instant = core::InstantAt(h, instant, m * tau);
         HoldPoses(span, first, count, n + 1, bx, by, byaw, heading_trig ? bc : nullptr, bs);

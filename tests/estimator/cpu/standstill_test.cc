@@ -141,6 +141,44 @@ TEST(Standstill, StillSubtreesGiveTheReferencesPairMatrix) {
   }
 }
 
+// The same queue turned about the ego by `angle` and seen at SUMO's 0.1 s steps (poses held
+// between the world's steps, HypothesisSet::pose_hold_steps): the ego's held pose keeps the
+// cos/sin of its heading, which the SIMD step's angle addition may give a last bit apart (at
+// a heading of pi it does).
+Scene TurnedQueueAtWorldSteps(double angle) {
+  Scene s = WaitingInAQueue(0.0);
+  s.euler_update_step_s = 0.1;
+  s.ego.state.yaw_rad = angle;
+  const double c = std::cos(angle), sn = std::sin(angle);
+  for (Vehicle& v : s.vehicles) {
+    const double x = v.state.x_m, y = v.state.y_m;
+    v.state.x_m = c * x - sn * y;
+    v.state.y_m = sn * x + c * y;
+    v.state.yaw_rad += angle;
+  }
+  return s;
+}
+
+// A waiting ego's braking subtrees are still whatever its heading, with held poses too: with
+// the SIMD step's last-bit cos/sin stored after a held first pose, none was, and each of its
+// braking profiles walked its whole tree against every car.
+TEST(Standstill, AWaitingEgoIsStillAtHeldPosesWhateverItsHeading) {
+  for (double angle : {-core::kPi, 2.0, 0.0}) {
+    const Scene scene = TurnedQueueAtWorldSteps(angle);
+    const Problem pb = BuildProblem(scene, Params{});
+    ASSERT_GT(pb.ego.pose_hold_steps, 1);
+    int still = 0;
+    const size_t late = ExpectReferenceMatrix(scene, true, &still);
+    // Every node of every braking profile's tree (it stands from the first step), no other.
+    int braking = 0, nodes = 0;
+    for (int profile = 0; profile < pb.ego.n_profiles; ++profile)
+      braking += pb.ego.profile_target[profile] <= 0.0;
+    for (int k = 0, level = 1; k < pb.ego.n_instants; ++k) nodes += (level *= pb.ego.n_lateral);
+    EXPECT_EQ(still, braking * nodes) << "angle " << angle;
+    EXPECT_GT(late, 1000u) << "angle " << angle;
+  }
+}
+
 // An ego that brakes to a standstill within the horizon (6 m/s: the hardest profiles stop
 // within 0.7 s) has still nodes below the first level; one too fast to stop (20 m/s) has
 // none. Both give the reference's matrix.
