@@ -103,6 +103,10 @@ void AssessBodies(const Problem& pb, const Params& params, std::vector<std::int1
 void FinishDecisionOutputs(const Problem& pb, const Params& params,
                            const std::vector<char>& ego_hit, Result* result) {
   const int n_ego = pb.EgoTrajectories();
+  // A sum of probabilities that is 1 in exact arithmetic (every hypothesis colliding) may round
+  // a few units in the last place above it: probabilities are reported within [0, 1].
+  for (double& c : result->ego_collision_probability) c = std::min(c, 1.0);
+  result->p_collision = std::min(result->p_collision, 1.0);
   const std::vector<double>& col = result->ego_collision_probability;
   result->reference_ego_trajectory = pb.ego_reference_trajectory;
   result->p_reference = n_ego > 0 ? col[pb.ego_reference_trajectory] : 0.0;

@@ -27,7 +27,8 @@ void AssessBodies(const Problem& problem, const Params& params,
 /** The outputs for decisions, from result->ego_collision_probability (every backend fills it)
  *  and which ego hypotheses collide with any CO hypothesis: p_reference, unavoidability, the
  *  count of collision-free ego hypotheses and the escape routes, each re-simulated on the host
- *  to record its manoeuvre over time. */
+ *  to record its manoeuvre over time. Rounds p_collision and each ego hypothesis' collision
+ *  probability that a sum put a few ulps above 1 to 1. */
 void FinishDecisionOutputs(const Problem& problem, const Params& params,
                            const std::vector<char>& ego_hit, Result* result);
 
