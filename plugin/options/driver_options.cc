@@ -10,6 +10,7 @@
 
 #include "plugin/options/config_file.h"
 #include "plugin/options/option_table.h"
+#include "plugin/record/results_db.h"
 
 namespace po = boost::program_options;
 namespace fs = std::filesystem;
@@ -321,7 +322,9 @@ ParseOutcome ParseDriverOptions(int argc, const char* const* argv) {
   Estimation(table.raw, vm, &o);
   Derive(&o);
   if (vm.count("check-options")) {
-    // A dry check (criticality-campaign plan): everything a run parses, then no run.
+    // A dry check: everything a run parses and that its results file can be created, then
+    // no run.
+    CheckOutputCreatable(o.run.output);
     std::cout << "sumo-criticality: options ok\n";
     out.exit_now = true;
   }

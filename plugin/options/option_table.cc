@@ -58,7 +58,8 @@ void OptionTable::Simulation(DriverOptions* o) {
       "every vehicle present is an ego (but parked ones; of the --ego-classes)")(
       "ego-classes", po::value(&raw.ego_classes),
       "with --all-vehicles, the SUMO vClasses that are egos, comma-separated, or all (default: "
-      "every road user but rail: cars, trucks, buses, motorcycles, bicycles, ...)")(
+      "every road user but rail: cars, trucks, buses, motorcycles, bicycles, ...; persons are "
+      "never egos, 'pedestrian' names vehicles of that vClass)")(
       "event", po::value(&raw.events)->composing(),
       "scripted event 'TIME TARGET ACTION ARGS' (repeatable; usually in a scenario.cfg). ACTION: "
       "speed-mode VEH BITS | lane-change-mode VEH BITS | speed VEH MPS | slow-down VEH MPS SEC | "

@@ -86,12 +86,28 @@ void BindOptionalText(sqlite3_stmt* s, int k, const std::string& text) {
 
 }  // namespace
 
-ResultsDb::ResultsDb(const std::string& path) : path_(path) {
+void CheckOutputCreatable(const std::string& path) {
   struct stat st {};
   if (stat(path.c_str(), &st) == 0) {
-    throw ResultsError("output '" + path +
-                       "' already exists; remove it or choose another --output");
+    throw ResultsError("output '" + path + "' already exists" +
+                       (S_ISDIR(st.st_mode) ? " (a folder); name a file in it" : "; remove it") +
+                       " or choose another --output");
   }
+  const size_t slash = path.find_last_of('/');
+  const std::string folder =
+      slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+  if (stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+    throw ResultsError("cannot create output '" + path + "': no folder '" + folder +
+                       "'; create it first or choose another --output");
+  }
+  if (access(folder.c_str(), W_OK) != 0) {
+    throw ResultsError("cannot create output '" + path + "': folder '" + folder +
+                       "' is not writable; choose another --output");
+  }
+}
+
+ResultsDb::ResultsDb(const std::string& path) : path_(path) {
+  CheckOutputCreatable(path);
   if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) !=
       SQLITE_OK) {
     const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";

@@ -20,6 +20,10 @@ class ResultsError : public std::runtime_error {
   explicit ResultsError(const std::string& what) : std::runtime_error(what) {}
 };
 
+/** Throws ResultsError unless a run could create `path`: it must not exist, and its folder
+ *  must exist and be writable (what ResultsDb checks first; --check-options checks it too). */
+void CheckOutputCreatable(const std::string& path);
+
 /** Where the time of one step went (milliseconds of wall time). */
 struct StepTimeRow {
   double time_s{0.0};

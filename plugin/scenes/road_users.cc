@@ -67,13 +67,17 @@ EgoClasses ParseEgoClasses(const std::string& text) {
   std::string name;
   while (std::getline(in, name, ',')) {
     if (name.empty()) continue;
-    if (!Classes().count(name)) {
+    const auto it = Classes().find(name);
+    if (it == Classes().end() || !it->second) {
       std::string known;
       for (const auto& [c, user] : Classes()) {
         if (user) known += (known.empty() ? "" : ", ") + c;
       }
-      throw std::invalid_argument("--ego-classes: unknown vClass '" + name + "'; use all or " +
-                                  known);
+      throw std::invalid_argument("--ego-classes: " +
+                                  (it == Classes().end()
+                                       ? "unknown vClass '" + name + "'"
+                                       : "vClass '" + name + "' is no road user and never an ego") +
+                                  "; use all or " + known);
     }
     out.classes.insert(name);
   }

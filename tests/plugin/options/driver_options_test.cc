@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "plugin/record/results_db.h"
 #include "plugin/script/scenario_event.h"
 
 namespace criticality::plugin {
@@ -403,6 +404,18 @@ TEST(DriverOptions, CheckOptionsParsesEverythingAndExitsWithoutARun) {
   EXPECT_THROW(
       Parse({"-c", "/nonexistent/x.sumocfg", "--ego", "e", "--output", "x", "--check-options"}),
       std::invalid_argument);
+  // So must the results file's folder, and the file must not: the run's errors (exit 4).
+  const std::string here = ::testing::TempDir() + "check_options_output.sqlite";
+  std::remove(here.c_str());
+  auto check = [](const std::string& output) {
+    Parse({"--connect", "h:1", "--ego", "e", "--output", output.c_str(), "--check-options"});
+  };
+  EXPECT_NO_THROW(check(here));
+  EXPECT_THROW(check("/nonexistent-folder/run.sqlite"), ResultsError);
+  EXPECT_THROW(check(::testing::TempDir()), ResultsError);  // a folder
+  std::ofstream(here) << "earlier results";
+  EXPECT_THROW(check(here), ResultsError);
+  std::remove(here.c_str());
 }
 
 // Whether `err` names `option` followed by `value` ("--range 0:", "--profiles = 2:", "--act

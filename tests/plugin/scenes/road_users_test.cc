@@ -71,6 +71,13 @@ TEST(RoadUsers, AnUnknownEgoClassIsAnErrorNamingIt) {
     EXPECT_NE(std::string(e.what()).find("truck"), std::string::npos) << e.what();
   }
   EXPECT_THROW(ParseEgoClasses(","), std::invalid_argument);
+  // A vClass SUMO knows that is no road user here (a ship) would select no ego at all.
+  try {
+    ParseEgoClasses("bus,ship");
+    FAIL() << "ship accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'ship' is no road user"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
