@@ -101,6 +101,7 @@ bool ClosedLoop::MayRelease(const Now& n, Engagement* s) const {
   // could come (p below its threshold), it also waits while handing back would be critical
   // again (HandBackRisk at or above the release threshold).
   const VehicleControl& c = n.control;
+  s->hand_back_p = -1.0;  // this step's estimate only (the release row reports it)
   const bool changed_lane = s->lane_change == LaneChange::kDone;
   const bool still_braking = !changed_lane && !AnyNonBrakingRoute(n.result->escape_routes, c);
   const bool held_stopped = s->speed_in_force && n.v() < kStandstill && c.forced &&

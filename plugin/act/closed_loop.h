@@ -74,7 +74,7 @@ class ClosedLoop {
     double previous_accel{0.0};   ///< the acceleration commanded at the previous step
     LaneChange lane_change{LaneChange::kNone};
     PendingChange pending;
-    double hand_back_p{-1.0};  ///< the last HandBackRisk of this engagement; -1: none yet
+    double hand_back_p{-1.0};  ///< this step's HandBackRisk; -1: none made this step
   };
   // What one step of an engaged ego sees.
   struct Now {

@@ -175,6 +175,40 @@ TEST(ClosedLoop, ControlIsHandedBackOnlyWhenHandingBackIsSafe) {
   }
 }
 
+// The release row's hand-back estimate is the one of the step that released: once the speed
+// went back to SUMO (the followed route stopped braking) no hand-back estimate is made, and an
+// earlier step's (0.8, which held the release then) must not appear as if it had allowed it.
+TEST(ClosedLoop, AReleaseReportsOnlyItsOwnStepsHandBackEstimate) {
+  Fixture f;
+  int estimates = 0;
+  ClosedLoop checked(Config(), &f.world, kDt, [&](const Scene&) {
+    ++estimates;
+    return 0.8;
+  });
+  VehicleControl c;
+  c.own_speed_mps = 20.0;
+  c.resume_speed_mps = 20.0;
+  c.accel_mps2 = 2.6;
+  c.lane = "E_0";
+  c.lanes = 2;
+  f.world.control["ego"] = c;
+  auto step = [&](double t, double p, const EscapeRoute& route) {
+    f.result.escape_routes = {route};
+    checked.Step(t, f.ego, f.scene, f.result, p, &f.actions);
+  };
+  for (int k = 0; k < 4; ++k) step(0.1 * k, 0.95, Route(-6.0));  // engaged, braking from 0.2 s
+  // Then the threat comes from behind (braking would raise its closing speed: the speed goes
+  // back to SUMO) and the followed route changes lanes.
+  f.scene.vehicles[0].state.x_m = 60.0;
+  for (int k = 4; k < 30 && checked.Acting("ego"); ++k) step(0.1 * k, 0.1, Route(0.0, true));
+  ASSERT_EQ(estimates, 1);  // the hand-back check held the release once, then had no speed
+  ASSERT_FALSE(checked.Acting("ego"));
+  ASSERT_FALSE(f.actions.empty());
+  EXPECT_EQ(f.actions.back().kind, "release");
+  EXPECT_EQ(f.actions.back().detail.find("estimate if handed back"), std::string::npos)
+      << f.actions.back().detail;
+}
+
 TEST(ClosedLoop, TheReleaseWaitsWhileEveryRouteAsSafeAsTheBestBrakes) {
   Fixture f;
   for (int k = 0; k < 30; ++k) f.StepAt(0.1 * k, k < 3 ? 0.95 : 0.1, {Route(-4.0)});
