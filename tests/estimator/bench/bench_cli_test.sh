@@ -52,7 +52,7 @@ rm -rf "$dir"
 # estimated one by one.
 data=$(cd "$(dirname "$0")/../data" && pwd)
 json=$("$bench" --fleet "$data" --repeat 1 --warmup 0 --json | tail -n 1)
-check "--fleet counts the folder's scene files" grep -q '"egos":3,' <<<"$json"
+check "--fleet counts the folder's scene files" grep -q '"egos":4,' <<<"$json"
 check "--fleet has the cpu row" grep -q '"backend":"cpu"' <<<"$json"
 check "--fleet's cpu-unshared row agrees with cpu exactly" \
   grep -q '"backend":"cpu-unshared"[^}]*"max_dp_vs_cpu":0,' <<<"$json"
