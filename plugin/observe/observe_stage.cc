@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <unordered_set>
 
 #include "plugin/network/polyline.h"
@@ -78,6 +79,10 @@ void ObserveStage::CheckNamedEgos() {
       case RouteIdKind::kAbsent:
         // Under --connect another client may still add it.
         if (config_.attached) break;
+        if (route_ids_.vehicle_flows.count(e)) {  // a flow's ID, not one of its vehicles'
+          throw EgoError("--ego '" + e + "': that is a flow; its vehicles are '" + e + ".0', '" +
+                         e + ".1', ...: name one of them (or use --all-vehicles)");
+        }
         throw EgoError("--ego '" + e +
                        "': SUMO will never load this vehicle; no route or additional file "
                        "defines it (route-files: '" +
@@ -269,7 +274,9 @@ std::string ObserveStage::NeverDeparted(double time_s) const {
   for (const std::string& e : config_.egos) {
     if (state_.at(e) != State::kPending) continue;
     const bool loaded = world_->Lookup(e) == Known::kVehicle;
-    return "--ego '" + e + "' never departed by t = " + std::to_string(time_s) + " s: " +
+    std::ostringstream t;  // 0.5, 120, 3.25: no trailing zeros
+    t << time_s;
+    return "--ego '" + e + "' never departed by t = " + t.str() + " s: " +
            (loaded ? "SUMO loaded it; its depart time may lie after the end of the run"
                    : "SUMO never loaded it; check the ID and the route files");
   }

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -86,6 +88,8 @@ TEST(ObserveStage, ANamedEgoGoneWithoutArrivingVanishedAndOneNeverSeenIsReported
   EXPECT_EQ(obs.left, std::vector<std::string>{"ego"});
   EXPECT_NE(stage.NeverDeparted(obs.time_s).find("--ego 'late' never departed"),
             std::string::npos);
+  EXPECT_NE(stage.NeverDeparted(0.5).find("by t = 0.5 s:"), std::string::npos)
+      << stage.NeverDeparted(0.5);  // no trailing zeros
 }
 
 TEST(ObserveStage, ACollisionIsRecordedOncePerContact) {
@@ -181,6 +185,32 @@ TEST(ObserveStage, APersonNamedAsEgoIsAnError) {
   w.AddPerson("walker", 0, 0, 0, 1);
   ObserveStage stage(Named({"walker"}), &w);
   EXPECT_THROW(stage.CheckNamedEgos(), EgoError);
+}
+
+// A flow's own ID names none of its vehicles (SUMO calls them FLOW.0, FLOW.1, ...): the error
+// says so instead of "no file defines it"; a typo gets the plain error.
+TEST(ObserveStage, AFlowsIdNamedAsEgoIsAnErrorNamingItsVehicles) {
+  const std::string routes = ::testing::TempDir() + "observe_flow_ego.rou.xml";
+  std::ofstream(routes) << "<routes><flow id=\"bikes\" begin=\"0\" end=\"9\" number=\"2\" "
+                           "from=\"a\" to=\"b\"/></routes>\n";
+  for (const std::string& ego : {std::string("bikes"), std::string("bikez")}) {
+    FakeSumoWorld w;
+    w.options["route-files"] = routes;
+    ObserveStage stage(Named({ego}), &w);
+    try {
+      stage.CheckNamedEgos();
+      ADD_FAILURE() << ego << " accepted";
+    } catch (const EgoError& e) {
+      const bool flow_hint = std::string(e.what()).find("'bikes.0'") != std::string::npos;
+      EXPECT_EQ(flow_hint, ego == "bikes") << e.what();
+    }
+  }
+  // A vehicle of the flow is an ego SUMO will load.
+  FakeSumoWorld w;
+  w.options["route-files"] = routes;
+  ObserveStage stage(Named({"bikes.1"}), &w);
+  EXPECT_NO_THROW(stage.CheckNamedEgos());
+  std::remove(routes.c_str());
 }
 
 TEST(ObserveStage, CriticalEventsComeFromTheEgosBodies) {
