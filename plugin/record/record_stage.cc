@@ -63,6 +63,7 @@ void RecordStage::Egos(double t, const Observation& obs, const SceneBatch& batch
     const ObjectSnapshot& ego = batch.EgoOf(k);
     if (!recorded_.insert(ego.id).second) continue;
     db_->AddEgo(t, ego.id, ego.vehicle_class, ego.vehicle_type, ego.length_m, ego.width_m);
+    ++egos_estimated_;
   }
 }
 

@@ -30,6 +30,8 @@ class RecordStage {
   /** File name of a recorded scene: t<time>_<ego>.scene, the ego ID made safe for a file name
    *  ('/' and other unsafe bytes written as %XX). */
   static std::string SceneFileName(double time_s, const std::string& ego);
+  /** Rows written to the egos table: egos estimated (again for one that left and came back). */
+  long long EgosEstimated() const { return egos_estimated_; }
 
  private:
   void Scenes(double t, const SceneBatch& batch);
@@ -43,6 +45,7 @@ class RecordStage {
   ResultsDb* db_;
   std::map<std::string, long long> open_episode_;  ///< ego -> warnings row
   std::set<std::string> recorded_;                 ///< egos in the egos table (in the network)
+  long long egos_estimated_{0};
 };
 
 }  // namespace criticality::plugin

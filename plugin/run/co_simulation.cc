@@ -299,7 +299,7 @@ class CoSimulation {
   void Account(const Observation& obs, const ActOutcome& acted) {
     sum_.steps += 1;
     sum_.sim_time_s = t_;
-    sum_.egos = observe_->EgosSeen();
+    sum_.egos = record_->EgosEstimated();
     sum_.invalid_objects = scenes_->invalid_objects();
     sum_.conditioned_states = scenes_->conditioned_states();
     sum_.parked_objects = scenes_->parked_objects();

@@ -608,6 +608,9 @@ PY
       check "$name ($mode): the run is completed in the database" \
         test "$(q "$db" "select status from runs" 2>/dev/null)" = completed
       check "$name ($mode): no error on stderr" test -z "$(grep -i error "$work/$name.$mode.err")"
+      # The summary counts the egos estimated: not the rail vehicles --all-vehicles leaves out.
+      [ $mode = all ] && check "$name (all): the summary's egos are the egos table's rows" \
+        test "$(summary_field "$(tail -n 1 <<<"$summary")" egos)" = "$(q "$db" "select count(*) from egos")"
     done
     check "$name (named ego): steps recorded while each special vehicle is within 30 m, the in-lane ones in its scene" \
       python3 "$here/mixed_fleet_check.py" named "$cfg" "$work/$name.named.fcd.xml" \
