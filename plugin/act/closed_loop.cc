@@ -213,7 +213,10 @@ void ClosedLoop::Control(const Now& n, Engagement* s, std::vector<ActionEvent>* 
   const LaneChanging lc = world_->LaneChangingModel();
   LateralPlan plan;
   const EscapeRoute* route = Route(n, *s, lc, &plan);
-  if (route && plan.direction != 0 && s->lane_change == LaneChange::kNone)
+  // A lateral manoeuvre answers a threat the estimate still sees: none starts while the loop
+  // only waits to hand back (p below the release threshold during the hold).
+  const bool threat_seen = n.p >= config_.policy.release_threshold;
+  if (route && plan.direction != 0 && s->lane_change == LaneChange::kNone && threat_seen)
     Steer(n, *route, plan, lc, threat_behind, s, actions);
   if (s->lane_change == LaneChange::kPending && n.t + 1e-9 >= s->pending.at_s) {
     s->lane_change = LaneChange::kDone;

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <vector>
@@ -197,10 +198,12 @@ TEST(ClosedLoop, AReleaseReportsOnlyItsOwnStepsHandBackEstimate) {
     checked.Step(t, f.ego, f.scene, f.result, p, &f.actions);
   };
   for (int k = 0; k < 4; ++k) step(0.1 * k, 0.95, Route(-6.0));  // engaged, braking from 0.2 s
+  step(0.4, 0.1, Route(0.0));  // p low: the hand-back check (0.8) holds the release
   // Then the threat comes from behind (braking would raise its closing speed: the speed goes
-  // back to SUMO) and the followed route changes lanes.
+  // back to SUMO) and the followed route changes lanes; p falls again.
   f.scene.vehicles[0].state.x_m = 60.0;
-  for (int k = 4; k < 30 && checked.Acting("ego"); ++k) step(0.1 * k, 0.1, Route(0.0, true));
+  step(0.5, 0.95, Route(0.0, true));
+  for (int k = 6; k < 30 && checked.Acting("ego"); ++k) step(0.1 * k, 0.1, Route(0.0, true));
   ASSERT_EQ(estimates, 1);  // the hand-back check held the release once, then had no speed
   ASSERT_FALSE(checked.Acting("ego"));
   ASSERT_FALSE(f.actions.empty());
@@ -294,6 +297,25 @@ TEST(ClosedLoop, WithTheSublaneModelTheOffsetIsCommandedAtOnce) {
   f.StepAt(0.0, 0.95, {Route(0.0, true)});
   EXPECT_EQ(f.loop.LaneChangeOf("ego"), LaneChange::kDone);
   EXPECT_EQ(f.world.commands, std::vector<std::string>{"sublane ego 3.20"});
+}
+
+// A lateral manoeuvre answers a threat the estimate still sees: while the loop only waits to
+// hand back (p below the release threshold during the hold), a route that steers aside starts
+// none; once p is up again, it does. (A user-style sublane run: a cyclist re-engaged at p 0.73
+// and was steered 2.2 m aside at p 0.06, 0.2 s before the release.)
+TEST(ClosedLoop, NoLateralManoeuvreStartsWhileTheEstimateIsBelowTheReleaseThreshold) {
+  Fixture f;
+  f.world.lane_changing.sublane = true;
+  for (int k = 0; k < 3; ++k) f.StepAt(0.1 * k, 0.95, {Route(-6.0)});  // braking, in its lane
+  for (int k = 3; k < 8; ++k) f.StepAt(0.1 * k, 0.1, {Route(0.0, true)});
+  EXPECT_TRUE(f.loop.Acting("ego"));  // still held (the hold's 1 s is not over)
+  EXPECT_EQ(f.loop.LaneChangeOf("ego"), LaneChange::kNone);
+  for (const std::string& c : f.world.commands)
+    EXPECT_EQ(c.find("sublane"), std::string::npos) << c;
+  f.StepAt(0.8, 0.95, {Route(0.0, true)});
+  EXPECT_EQ(f.loop.LaneChangeOf("ego"), LaneChange::kDone);
+  EXPECT_NE(std::find(f.world.commands.begin(), f.world.commands.end(), "sublane ego 3.20"),
+            f.world.commands.end());
 }
 
 TEST(ClosedLoop, WithoutALaneToGoToTheBestRouteThatKeepsItsLaneIsFollowed) {
