@@ -1,6 +1,7 @@
 #pragma once
 // What the observe stage needs to know: which vehicles are egos and how far around them to
 // read.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,9 @@ namespace criticality::plugin {
 struct ObserveConfig {
   std::vector<std::string> egos;  ///< --ego (named egos), in the order given
   bool all_vehicles{false};       ///< --all-vehicles: every vehicle present is an ego
+  /** With all_vehicles: whether a SUMO vClass is one of the egos' (--ego-classes); the
+   *  vehicles of other classes get no ego events. Empty: every class. */
+  std::function<bool(const std::string& vehicle_class)> ego_class;
   /** --range: objects whose centre lies within this distance of an ego's are in its scene
    *  (the scenes stage applies it exactly; reading reaches further, kReadMarginM). */
   double range_m{80.0};

@@ -113,8 +113,21 @@ Observation ObserveStage::Run() {
   const std::vector<std::string> driving = Driving(colliding, &obs);
   first_step_ = false;
   Read(driving, colliding, &obs);
+  KeepEgoClassEvents(&obs);
   obs.critical_events = critical_.Run(obs.time_s, obs.surroundings);
   return obs;
+}
+
+void ObserveStage::KeepEgoClassEvents(Observation* obs) {
+  if (!config_.all_vehicles || !config_.ego_class) return;
+  for (const SumoObject& o : obs->surroundings.objects) {
+    if (!o.person && !config_.ego_class(o.vehicle_class)) other_class_.insert(o.id);
+  }
+  auto& events = obs->ego_events;
+  events.erase(std::remove_if(events.begin(), events.end(),
+                              [&](const EgoEvent& e) { return other_class_.count(e.ego) > 0; }),
+               events.end());
+  for (const std::string& id : obs->left) other_class_.erase(id);
 }
 
 std::set<std::string> ObserveStage::Collisions(const StepReport& report, Observation* obs) {

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "plugin/network/road_network.h"
@@ -60,6 +61,9 @@ class ObserveStage {
    *  vanished. */
   void Read(const std::vector<std::string>& driving, const std::set<std::string>& colliding,
             Observation* obs);
+  /** With --all-vehicles and ego_class: drops the step's ego events of vehicles whose class
+   *  is no ego's (learnt from the step's snapshots; forgotten when they leave). */
+  void KeepEgoClassEvents(Observation* obs);
   void Vanish(const std::string& id, const std::set<std::string>& colliding, Observation* obs);
   void Leave(const std::string& id, Observation* obs);
   /** A collision whose collider SUMO already removed: its front bumper from its lane and
@@ -69,6 +73,7 @@ class ObserveStage {
   State* StateOf(const std::string& id);
 
   ObserveConfig config_;
+  std::unordered_set<std::string> other_class_;  ///< vehicles of no ego class (KeepEgoClassEvents)
   SumoWorld* world_;
   std::set<std::string> named_;
   std::unordered_map<std::string, State> state_;  ///< all-vehicles: only those in the network

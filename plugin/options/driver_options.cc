@@ -276,6 +276,9 @@ void Derive(DriverOptions* o) {
   scenes.friction = o->params.friction;
   scenes.max_steer_rad = o->params.max_steer_rad;
   scenes.all_vehicles = observe.all_vehicles;
+  observe.ego_class = [classes = scenes.ego_classes](const std::string& vehicle_class) {
+    return classes.Includes(vehicle_class);
+  };
   o->act.closed_loop.brake.latency_s = o->params.latency_s;  // the escape routes' braking
   o->act.closed_loop.brake.jerk_mps3 = o->params.jerk_mps3;
   // Only the closed loop reads the escape routes (plugin/act/closed_loop.cc); each is

@@ -611,6 +611,11 @@ PY
       # The summary counts the egos estimated: not the rail vehicles --all-vehicles leaves out.
       [ $mode = all ] && check "$name (all): the summary's egos are the egos table's rows" \
         test "$(summary_field "$(tail -n 1 <<<"$summary")" egos)" = "$(q "$db" "select count(*) from egos")"
+      if [ $mode = all ] && [ -n "$no_egos" ]; then
+        quoted="'${no_egos//,/\',\'}'"
+        check "$name (all): no ego events of the vehicles that are no egos ($no_egos)" \
+          test "$(q "$db" "select count(*) from ego_events where ego in ($quoted)")" = 0
+      fi
     done
     check "$name (named ego): steps recorded while each special vehicle is within 30 m, the in-lane ones in its scene" \
       python3 "$here/mixed_fleet_check.py" named "$cfg" "$work/$name.named.fcd.xml" \

@@ -180,6 +180,29 @@ TEST(ObserveStage, EveryVehicleIsAnEgoWithItsNeighboursWhenTheWholeNetworkIsRead
   EXPECT_EQ(Egos(obs), (std::vector<std::string>{"a", "b"}));
 }
 
+// Under --all-vehicles, vehicles of a class --ego-classes leaves out (a tram by default) are
+// read as objects but get no ego events: no depart, no arrive.
+TEST(ObserveStage, VehiclesOfNoEgoClassGetNoEgoEvents) {
+  FakeSumoWorld w;
+  ObserveConfig all;
+  all.all_vehicles = true;
+  all.ego_class = [](const std::string& vehicle_class) { return vehicle_class != "tram"; };
+  ObserveStage stage(all, &w);
+  w.AddVehicle("car", 0, 0, 90, 10);
+  w.AddVehicle("tram", 30, 0, 90, 10).vehicle_class = "tram";
+  w.next_report.departed = {"car", "tram"};
+  w.Step();
+  Observation obs = stage.Run();
+  EXPECT_EQ(Events(obs), "car depart");
+  ASSERT_EQ(obs.surroundings.objects.size(), 2u);  // the tram is still an object
+  w.Remove("car");
+  w.Remove("tram");
+  w.next_report.arrived = {"car", "tram"};
+  w.Step();
+  obs = stage.Run();
+  EXPECT_EQ(Events(obs), "car arrive");
+}
+
 TEST(ObserveStage, APersonNamedAsEgoIsAnError) {
   FakeSumoWorld w;
   w.AddPerson("walker", 0, 0, 0, 1);
