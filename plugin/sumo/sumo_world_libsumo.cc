@@ -73,6 +73,14 @@ std::unique_ptr<SumoWorld> StartLibsumo(const std::vector<std::string>& args) {
     throw SumoError("loading SUMO failed: " + failure +
                     (errors.empty() ? "" : " (" + errors + ")"));
   }
+  // SUMO goes on after some errors of its own (an invalid value of an option such as
+  // collision.action: it runs with the default and still exits 0); the run would not be the one
+  // asked for. The campaign's plan check refuses them too.
+  if (!errors.empty()) {
+    libsumo::Simulation::close();
+    throw SumoError("SUMO reported errors while loading (" + errors +
+                    "); fix the SUMO configuration or options");
+  }
   std::fputs(capture.text().c_str(), stderr);  // warnings of a successful load stay visible
   return std::make_unique<World>();
 }

@@ -226,6 +226,10 @@ PY
     printf '<configuration><input><net-file value="nowhere.net.xml"/></input>\n' > "$work/broken.sumocfg"
     expect_error 3 "SUMO error" -c "$work/broken.sumocfg" --ego ego --output "$work/b2.sqlite"
     check "a run that fails before its first step leaves no output file" test ! -e "$work/b2.sqlite"
+    # SUMO prints an error for an invalid option value and runs on with its default: an error.
+    expect_error 3 "collision.action 'bogus'" --config "$cfg" --output "$work/b2c.sqlite" -- \
+      --collision.action bogus
+    check "a run SUMO reported errors for leaves no output file" test ! -e "$work/b2c.sqlite"
     expect_error 5 "never load" --config "$cfg" --ego nobody --output "$work/b3.sqlite"
     check "an ego no route file defines fails before the first step, leaving no file" test ! -e "$work/b3.sqlite"
     expect_error 5 "is a person" --config "$scenarios/pedestrian_steps_out/scenario.cfg" --ego walker --output "$work/b3p.sqlite"
