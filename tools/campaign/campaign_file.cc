@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -53,6 +54,28 @@ class Reader {
 
   void RequireMap(const YAML::Node& n, const std::string& key) const {
     if (!n.IsMap()) Fail(n, key, "expected a mapping (name: value lines), got " + Kind(n));
+  }
+
+  /** A key given twice in one mapping, anywhere in the document, is an error naming the key
+   *  and both lines (YAML parsers keep the first and drop the other without a word). */
+  void CheckNoDuplicateKeys(const YAML::Node& n, const std::string& prefix) const {
+    if (n.IsSequence()) {
+      for (std::size_t k = 0; k < n.size(); ++k)
+        CheckNoDuplicateKeys(n[k], prefix + "[" + std::to_string(k) + "]");
+      return;
+    }
+    if (!n.IsMap()) return;
+    std::map<std::string, int> first_line;
+    for (auto it = n.begin(); it != n.end(); ++it) {
+      const std::string k = it->first.IsScalar() ? it->first.Scalar() : "";
+      const std::string key = prefix.empty() ? k : prefix + "." + k;
+      const auto [at, fresh] = first_line.emplace(k, Line(it->first));
+      if (!fresh) {
+        Fail(it->first, key,
+             "given twice (first at line " + std::to_string(at->second) + "); keep one");
+      }
+      CheckNoDuplicateKeys(it->second, key);
+    }
   }
 
   /** Keys of `map` not in `allowed` are errors naming the key and its line. */
@@ -294,6 +317,7 @@ CampaignSpec ParseCampaign(const std::string& text, const fs::path& file) {
     r.Fail(e.mark.line + 1, "", "YAML syntax error: " + e.msg);
   }
   if (!root.IsMap()) r.Fail(0, "", "expected a campaign (name: value lines), got " + r.Kind(root));
+  r.CheckNoDuplicateKeys(root, "");
   r.CheckKeys(root, "",
               {"name", "output", "scenarios", "egos", "driver", "sumo", "grid", "repetitions",
                "limits", "slurm"});

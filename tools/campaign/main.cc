@@ -328,15 +328,25 @@ int CmdRun(const std::vector<std::string>& args) {
          {"complete_before", t.done_before},
          {"ok", t.ok},
          {"failed", t.failed},
+         {"failed_before", t.failed_before},
          {"remaining", t.remaining},
          {"interrupted", t.interrupted},
          {"wall_s", t.wall_s},
          {"max_rss_kb", t.max_rss_kb},
          {"cpu_s", t.cpu_s},
          {"output", plan.spec().output.string()}};
+  if (t.failed_before > 0) {
+    std::cerr << "criticality-campaign: " << t.failed_before
+              << " run(s) of the folder failed before and were not run again; "
+                 "`run --retry-failed` redoes them\n";
+  }
+  if (t.stopped_by_signal) {
+    std::cerr << "criticality-campaign: interrupted; " << t.interrupted
+              << " run(s) stopped and left to redo: the same `run` command resumes\n";
+  }
   std::cout << j.dump() << std::endl;
   if (t.stopped_by_signal) return kExitInterrupted;
-  return t.failed > 0 ? kExitRunsFailed : kExitOk;
+  return t.failed + t.failed_before > 0 ? kExitRunsFailed : kExitOk;
 }
 
 int CmdSlurm(const std::vector<std::string>& args) {

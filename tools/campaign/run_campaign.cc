@@ -92,7 +92,9 @@ RunTotals RunCampaign(const Plan& plan, const fs::path& out_dir, const RunOption
     return !folder.IsComplete(i) || (o.retry_failed && IsFailedRecord(folder.RunDir(i)));
   };
   for (std::size_t i = first; i <= last; ++i) {
-    if (!needs_work(i)) ++totals.done_before;
+    if (needs_work(i)) continue;
+    ++totals.done_before;
+    if (IsFailedRecord(folder.RunDir(i))) ++totals.failed_before;
   }
 
   StopSignals signals;

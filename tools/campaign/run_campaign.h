@@ -31,6 +31,9 @@ struct RunTotals {
   std::size_t done_before{0};
   std::size_t ok{0};
   std::size_t failed{0};
+  /** Complete before and failed then, not redone (no --retry-failed): the folder still holds
+   *  them as failed. */
+  std::size_t failed_before{0};
   std::size_t remaining{0};    ///< not complete at the end (another process holds it, or stopped)
   std::size_t interrupted{0};  ///< stopped here by SIGINT/SIGTERM, left to redo
   bool stopped_by_signal{false};

@@ -194,9 +194,20 @@ std::vector<Scenario> ResolveScenarios(const CampaignSpec& spec) {
       out.push_back(std::move(s));
     }
   }
-  // Names label tables and figures: make clashing ones unique with their paths.
+  // Names label tables and figures. A name given (`name:`) must be the only one of its kind;
+  // clashing names derived from paths are made unique with their paths.
   std::map<std::string, int> count;
   for (const Scenario& s : out) ++count[s.name];
+  for (const Scenario& s : out) {
+    const ScenarioEntry& e = spec.scenarios[s.entry];
+    if (e.name.empty() || count[s.name] == 1) continue;
+    const auto other = std::find_if(out.begin(), out.end(), [&](const Scenario& o) {
+      return o.name == s.name && o.path != s.path;
+    });
+    throw CampaignError(Where(spec, e.line, "scenarios[" + std::to_string(s.entry) + "].name") +
+                        "'" + s.name + "' is also the name of " + other->rel_path +
+                        "; give each scenario its own name");
+  }
   for (Scenario& s : out) {
     if (count[s.name] > 1) s.name = fs::path(s.rel_path).replace_extension().string();
   }

@@ -69,6 +69,11 @@ check grep -q "checked: 2 of 2 SUMO option sets through sumo" <<<"$out"
 # --- a changed campaign file over a started folder ------------------------------------------
 printf 'output: out-re\nscenarios: [a/scenario.cfg]\ndriver:\n  stand-in-exit: 3\ngrid:\n  sumo:\n    seed: [1, 2]\n' >re.yaml
 "$tool" run re.yaml -j 2 >/dev/null 2>&1; check [ $? = 3 ]  # both runs fail
+# Run again unchanged: nothing redone, yet the folder's failed runs are said and exit 3.
+out=$("$tool" run re.yaml -j 2 2>err); rc=$?
+check [ $rc = 3 ]
+check [ "$(json_field failed_before "$out")" = 2 ]
+check grep -q "2 run(s) of the folder failed before and were not run again; \`run --retry-failed\` redoes them" err
 # Fixed: the failed runs are redone, no flag needed.
 printf 'output: out-re\nscenarios: [a/scenario.cfg]\ngrid:\n  sumo:\n    seed: [1, 2]\n' >re.yaml
 out=$("$tool" run re.yaml -j 2 2>err); rc=$?
@@ -156,6 +161,7 @@ sleep 0.1
 kill -INT $pid; wait $pid; rc=$?
 check [ $rc = 130 ]
 check [ "$(json_field interrupted "$(tail -n 1 run.out)")" -ge 1 ]
+check grep -q "interrupted; [0-9]* run(s) stopped and left to redo: the same \`run\` command resumes" run.err
 
 # resume: everything completes; each run that completed before ran exactly once
 out=$("$tool" run c.yaml -j 2 2>run.err); rc=$?

@@ -114,6 +114,19 @@ TEST(CampaignFile, UnknownKeysNameKeyAndLine) {
             std::string::npos);
 }
 
+// YAML parsers keep the first of two equal keys in a mapping and drop the second silently.
+TEST(CampaignFile, AKeyGivenTwiceIsAnErrorNamingBothLines) {
+  EXPECT_EQ(ErrorOf("output: o\nscenarios: [x.cfg]\noutput: p\n"),
+            "/tmp/c/camp.yaml:3: output: given twice (first at line 1); keep one");
+  EXPECT_EQ(ErrorOf("output: o\nscenarios: [x.cfg]\ngrid:\n  driver:\n    warn-threshold: [0.5]\n"
+                    "    warn-threshold: [0.7]\n"),
+            "/tmp/c/camp.yaml:6: grid.driver.warn-threshold: given twice (first at line 5); keep "
+            "one");
+  EXPECT_NE(ErrorOf("output: o\nscenarios:\n  - path: x.cfg\n    name: a\n    name: b\n")
+                .find("camp.yaml:5: scenarios[0].name: given twice (first at line 4)"),
+            std::string::npos);
+}
+
 TEST(CampaignFile, EmptyGridsAreErrors) {
   EXPECT_NE(ErrorOf("output: o\nscenarios: [x.cfg]\ngrid:\n  driver:\n    profiles: []\n")
                 .find("camp.yaml:5: grid.driver.profiles: empty grid axis"),

@@ -92,9 +92,15 @@ TEST(RunCampaign, FailedRunsAreRecordedWhileOthersGoOnAndCanBeRetried) {
   EXPECT_EQ(bad["status"], "failed");
   EXPECT_EQ(bad["exit_code"], 3);
   EXPECT_EQ(bad["error"], "exit code 3");
+  // Resumed without --retry-failed: nothing runs, and the failed runs are counted as such.
+  const RunTotals again = RunCampaign(p, d / "out", Options());
+  EXPECT_EQ(again.done_before, 4u);
+  EXPECT_EQ(again.failed_before, 2u);
+  EXPECT_EQ(again.failed, 0u);
   RunOptions retry = Options();
   retry.retry_failed = true;
   const RunTotals r = RunCampaign(p, d / "out", retry);
+  EXPECT_EQ(r.failed_before, 0u);  // they are redone
   EXPECT_EQ(r.done_before, 2u);
   EXPECT_EQ(r.failed, 2u);  // they fail again, and only they ran again
   const auto n = Executions(d);

@@ -145,6 +145,19 @@ TEST(ScenarioFiles, ErrorsNameTheEntryAndLine) {
   EXPECT_NE(error("  - path: n/x.sumocfg\n    egos: all\n  - n/*.sumocfg\n")
                 .find("campaign.yaml:5: scenarios[1]: n/x.sumocfg is already in the campaign"),
             std::string::npos);
+  // A name given must be the only one of its kind; names from paths that clash get the paths.
+  WriteFile(d / "m/x.sumocfg", kSumocfg);
+  EXPECT_NE(error("  - path: n/x.sumocfg\n    egos: all\n  - path: m/x.sumocfg\n    name: x\n"
+                  "    egos: all\n")
+                .find("campaign.yaml:5: scenarios[1].name: 'x' is also the name of n/x.sumocfg"),
+            std::string::npos);
+  const auto both =
+      ResolveScenarios(Spec(d,
+                            "  - path: n/x.sumocfg\n    egos: all\n  - path: m/x.sumocfg\n"
+                            "    egos: all\n"));
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_EQ(both[0].name, "n/x");
+  EXPECT_EQ(both[1].name, "m/x");
 }
 
 }  // namespace
