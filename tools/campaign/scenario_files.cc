@@ -163,6 +163,11 @@ std::vector<Scenario> ResolveScenarios(const CampaignSpec& spec) {
           std::any_of(spec.axes.begin(), spec.axes.end(), [](const Axis& a) {
             return a.target == Target::kDriver && (a.name == "ego" || a.name == "all-vehicles");
           });
+      if (use && driver_egos) {
+        throw CampaignError(Where(spec, egos->line, e.egos ? key + ".egos" : "egos") +
+                            "the driver options choose the egos too (`ego` or `all-vehicles`); "
+                            "keep one of the two");
+      }
       if (s.kind == ScenarioKind::kSumoConfig && !use && !driver_egos) {
         throw CampaignError(Where(spec, e.line, key) + s.rel_path +
                             " is a plain .sumocfg: say which vehicles are egos with `egos:` (all, "

@@ -133,10 +133,16 @@ TEST(ScenarioFiles, ErrorsNameTheEntryAndLine) {
                 .find("campaign.yaml:3: scenarios[0]: n/x.sumocfg is a plain "
                       ".sumocfg: say which vehicles are egos"),
             std::string::npos);
-  // Egos given as driver options are enough.
+  // Egos given as driver options are enough; given both ways, they are an error (which?).
   EXPECT_NO_THROW(
       ResolveScenarios(Spec(d, "  - n/x.sumocfg\n", "driver:\n  all-vehicles: true\n")));
   EXPECT_NO_THROW(ResolveScenarios(Spec(d, "  - n/x.sumocfg\n", "driver:\n  ego: [v0]\n")));
+  EXPECT_NE(error("  - n/x.sumocfg\negos: {type: bus}\ndriver:\n  all-vehicles: true\n")
+                .find("campaign.yaml:4: egos: the driver options choose the egos too"),
+            std::string::npos);
+  EXPECT_NE(error("  - path: n/x.sumocfg\n    egos: all\ndriver:\n  ego: [v0]\n")
+                .find("campaign.yaml:4: scenarios[0].egos: the driver options choose the egos too"),
+            std::string::npos);
   EXPECT_NE(error("  - missing/*.cfg\n")
                 .find("campaign.yaml:3: scenarios[0]: 'missing/*.cfg' "
                       "matches no file"),
