@@ -198,16 +198,16 @@ bool CheckScenarioFiles(const Plan& plan, const Scenario& sc, Errors& errors, st
                "every run");
     return false;
   }
-  ++*files;
   if (!fs::is_regular_file(cfg)) {
     errors.Add(sc.line, where, "its SUMO configuration " + cfg.string() + " does not exist", 0,
                "every run");
     return false;
   }
+  ++*files;  // the files found: the line "N scenario files exist" counts only those
   bool ok = true;
   for (const char* key : {"net-file", "route-files", "additional-files"}) {
     for (const fs::path& f : SumoConfigFiles(cfg, key)) {
-      ++*files;
+      if (fs::exists(f)) ++*files;
       if (!fs::exists(f)) {
         errors.Add(
             sc.line, where,

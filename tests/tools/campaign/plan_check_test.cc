@@ -213,6 +213,7 @@ TEST(CheckPlan, AMissingScenarioFileNamesTheEntryAndSkipsItsProgramChecks) {
             0u)
       << c.errors[0];
   EXPECT_EQ(c.driver_checked, 1u);  // scenario a only
+  EXPECT_EQ(c.scenario_files, 5u);   // the files that exist: not b's net
 }
 
 TEST(CheckPlan, BeyondTheLimitACoverOfEveryValueIsCheckedAndSaidSo) {
