@@ -40,6 +40,14 @@ constexpr int kExitBadInput = 2;
 constexpr int kExitRunsFailed = 3;
 constexpr int kExitInterrupted = 130;
 
+// A command that fails still ends its standard output with a JSON summary (README: the last
+// stdout line), as the driver does: its status, exit code and error.
+int FailedSummary(int code, const std::string& error) {
+  std::cout << json{{"status", "failed"}, {"exit_code", code}, {"error", error}}.dump()
+            << std::endl;
+  return code;
+}
+
 const char* kUsage =
     "criticality-campaign: parameter sweeps of sumo-criticality across SUMO scenarios, on this "
     "machine or on a Slurm cluster.\n\n"
@@ -317,7 +325,7 @@ int CmdRun(const std::vector<std::string>& args) {
   const bool driver_checks = CheckOptions(plan, ro.driver);
   check.jobs = jobs;
   if (!check.skip && !ProveRunsStart(plan, ro.driver, driver_checks, check, std::cerr, nullptr))
-    return kExitBadInput;
+    return FailedSummary(kExitBadInput, "the runs cannot start (the errors above); nothing ran");
   ro.time_limit_s = time_limit >= 0 ? time_limit : plan.spec().time_limit_s;
   ro.kill_after_s = plan.spec().kill_after_s;
   ro.progress = no_progress ? nullptr : stderr;
@@ -381,7 +389,7 @@ int CmdSlurm(const std::vector<std::string>& args) {
   const std::string driver = FindDriver(driver_opt);
   const bool driver_checks = CheckOptions(plan, driver);
   if (!check.skip && !ProveRunsStart(plan, driver, driver_checks, check, std::cerr, nullptr))
-    return kExitBadInput;
+    return FailedSummary(kExitBadInput, "the runs cannot start (the errors above); no script");
   const CampaignFolder folder = CampaignFolder::Prepare(plan.spec().output, plan, replan);
   if (!folder.changes().empty()) std::cerr << "criticality-campaign: " << folder.changes();
   const SlurmJob job = MakeSlurmJob(plan, folder, SelfPath(), driver,
@@ -511,14 +519,15 @@ int main(int argc, char** argv) {
     if (cmd == "slurm") return CmdSlurm(args);
     if (cmd == "merge") return CmdMerge(args);
     if (cmd == "report") return CmdReport(args);
-    std::cerr << "criticality-campaign: error: unknown command '" << cmd
-              << "' (plan, run, slurm, merge, report; see --help)\n";
-    return kExitBadInput;
+    const std::string error =
+        "unknown command '" + cmd + "' (plan, run, slurm, merge, report; see --help)";
+    std::cerr << "criticality-campaign: error: " << error << "\n";
+    return FailedSummary(kExitBadInput, error);
   } catch (const CampaignError& e) {
     std::cerr << "criticality-campaign: error: " << e.what() << "\n";
-    return kExitBadInput;
+    return FailedSummary(kExitBadInput, e.what());
   } catch (const std::exception& e) {
     std::cerr << "criticality-campaign: internal error: " << e.what() << "\n";
-    return kExitInternal;
+    return FailedSummary(kExitInternal, std::string("internal error: ") + e.what());
   }
 }

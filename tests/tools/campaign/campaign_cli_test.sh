@@ -29,9 +29,11 @@ check [ $rc = 2 ]
 check [ "$(wc -l <err)" = 1 ]
 check grep -q "bad.yaml:5: grid.driver.profiles: empty grid axis" err
 printf 'output: o\nscenarios: [a/scenario.cfg]\ndriver:\n  profils: 3\n' >bad2.yaml
-"$tool" run bad2.yaml >/dev/null 2>err; rc=$?
+out=$("$tool" run bad2.yaml 2>err); rc=$?
 check [ $rc = 2 ]; check grep -q "bad2.yaml:4: driver.profils: sumo-criticality has no option --profils" err
-"$tool" plan missing.yaml >/dev/null 2>err; check [ $? = 2 ]; check grep -q "cannot read" err
+check [ "$(json_field status "$(tail -n 1 <<<"$out")")" = \"failed\" ]  # the last stdout line, failed too
+out=$("$tool" plan missing.yaml 2>err); check [ $? = 2 ]; check grep -q "cannot read" err
+check [ "$(json_field exit_code "$(tail -n 1 <<<"$out")")" = 2 ]
 "$tool" merge "$work" >/dev/null 2>err; check [ $? = 2 ]; check grep -q "not a campaign folder" err
 
 # --- plan proves every run can start ---------------------------------------------------------
