@@ -406,7 +406,10 @@ int CmdSlurm(const std::vector<std::string>& args) {
   std::cerr << "criticality-campaign: wrote " << script.string() << " (" << job.tasks
             << " array tasks, " << job.runs_per_task << " run"
             << (job.runs_per_task == 1 ? "" : "s") << " each)\n";
+  if (!job.time_warning.empty())
+    std::cerr << "criticality-campaign: warning: " << job.time_warning << "\n";
   json j{{"script", script.string()},
+         {"time_warning", job.time_warning},
          {"tasks", job.tasks},
          {"runs_per_task", job.runs_per_task},
          {"runs", plan.size()}};

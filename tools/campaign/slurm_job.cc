@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include "tools/campaign/campaign_error.h"
 
@@ -45,6 +46,41 @@ std::string JobName(const std::string& name) {
 
 }  // namespace
 
+double SlurmTimeSeconds(const std::string& text) {
+  std::string rest = text;
+  double days = 0.0;
+  const auto dash = rest.find('-');
+  std::vector<long> parts;
+  auto numbers = [](const std::string& t, std::vector<long>* out) {
+    std::string cur;
+    for (std::size_t k = 0; k <= t.size(); ++k) {
+      if (k == t.size() || t[k] == ':') {
+        if (cur.empty()) return false;
+        out->push_back(std::stol(cur));
+        cur.clear();
+      } else if (std::isdigit(static_cast<unsigned char>(t[k]))) {
+        cur += t[k];
+      } else {
+        return false;
+      }
+    }
+    return true;
+  };
+  if (dash != std::string::npos) {
+    std::vector<long> d;
+    if (!numbers(rest.substr(0, dash), &d) || d.size() != 1) return -1.0;
+    days = static_cast<double>(d[0]);
+    rest = rest.substr(dash + 1);
+    if (!numbers(rest, &parts) || parts.size() > 3) return -1.0;
+    while (parts.size() < 3) parts.push_back(0);  // D-H, D-H:M
+    return days * 86400.0 + parts[0] * 3600.0 + parts[1] * 60.0 + parts[2];
+  }
+  if (!numbers(rest, &parts) || parts.size() > 3) return -1.0;
+  if (parts.size() == 1) return parts[0] * 60.0;             // M
+  if (parts.size() == 2) return parts[0] * 60.0 + parts[1];  // M:S
+  return parts[0] * 3600.0 + parts[1] * 60.0 + parts[2];     // H:M:S
+}
+
 SlurmJob MakeSlurmJob(const Plan& plan, const CampaignFolder& folder, const std::string& self,
                       const std::string& driver, double time_limit_s) {
   const SlurmSettings& st = plan.spec().slurm;
@@ -79,6 +115,19 @@ SlurmJob MakeSlurmJob(const Plan& plan, const CampaignFolder& folder, const std:
   if (time_limit_s > 0) s << " --time-limit " << time_limit_s;
   s << "\n";
   job.script = s.str();
+  // A task runs its runs cpus_per_task at a time, each up to the time limit.
+  const double slurm_s = SlurmTimeSeconds(st.time);
+  const std::size_t waves = (k + st.cpus_per_task - 1) / st.cpus_per_task;
+  const double need_s = static_cast<double>(waves) * time_limit_s;
+  if (time_limit_s > 0 && slurm_s > 0 && need_s >= slurm_s) {
+    std::ostringstream w;
+    w << "each array task runs up to " << k << " run" << (k == 1 ? "" : "s") << ", "
+      << st.cpus_per_task << " at a time, each up to " << time_limit_s
+      << " s (limits.time_s): up to " << need_s << " s, not less than slurm.time " << st.time
+      << " (" << slurm_s << " s); Slurm may end tasks before their runs (they are redone on "
+      << "resubmission): raise slurm.time or cpus_per_task, or lower runs_per_task";
+    job.time_warning = w.str();
+  }
   return job;
 }
 

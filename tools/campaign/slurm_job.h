@@ -15,7 +15,13 @@ struct SlurmJob {
   std::string script;    ///< the sbatch script's text
   std::size_t tasks{0};  ///< array size
   std::size_t runs_per_task{1};
+  /** Non-empty when a task's runs, each up to the time limit, may outlast `slurm.time`. */
+  std::string time_warning;
 };
+
+/** Seconds of a Slurm time ("M", "M:S", "H:M:S", "D-H", "D-H:M", "D-H:M:S"); -1 when the text
+ *  is none of these (or "infinite"/"unlimited"). */
+double SlurmTimeSeconds(const std::string& text);
 
 /** The script for `plan` in the campaign folder; `self` and `driver` are absolute paths of
  *  criticality-campaign and sumo-criticality as the compute nodes see them. */
