@@ -170,6 +170,25 @@ std::string Joined(const std::vector<std::string>& argv) {
   return s;
 }
 
+// A folder of this very plan: how far its runs are, and what `run` would do with them.
+json FolderState(const Plan& plan, std::ostream* out) {
+  const CampaignFolder folder = CampaignFolder::Layout(plan.spec().output, plan.size());
+  std::size_t complete = 0, failed = 0, partial = 0;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    if (folder.IsComplete(i)) {
+      ++complete;
+      failed += IsFailedRecord(folder.RunDir(i)) ? 1 : 0;
+    } else if (fs::exists(folder.PartialDir(i))) {
+      ++partial;
+    }
+  }
+  const std::size_t missing = plan.size() - complete - partial;
+  *out << "folder: " << complete << " of " << plan.size() << " runs complete";
+  if (failed) *out << " (" << failed << " failed: `run --retry-failed` redoes them)";
+  *out << ", " << partial << " half done (`run` redoes them), " << missing << " not started\n";
+  return {{"complete", complete}, {"failed", failed}, {"partial", partial}, {"missing", missing}};
+}
+
 int CmdPlan(const std::vector<std::string>& args) {
   std::string file, output, driver_opt;
   int show = 5;
@@ -260,6 +279,8 @@ int CmdPlan(const std::vector<std::string>& args) {
       j["folder"] = {{"kept", changes.kept.size()},
                      {"redone", changes.redone.size()},
                      {"superseded", changes.superseded.size()}};
+    } else {
+      j["folder"] = FolderState(plan, &std::cout);
     }
   }
   std::cout << j.dump() << std::endl;

@@ -46,17 +46,6 @@ class StopSignals {
   struct sigaction old_term_ {};
 };
 
-bool IsFailedRecord(const fs::path& run_dir) {
-  std::ifstream in(run_dir / "run.json");
-  if (!in) return true;  // a complete folder without a record is not a result
-  try {
-    const json r = json::parse(in);
-    return r.value("status", "") != "ok";
-  } catch (const json::exception&) {
-    return true;
-  }
-}
-
 void WriteRecord(const fs::path& file, const json& record) {
   std::ofstream out(file);
   out << record.dump(2, ' ', false, json::error_handler_t::replace) << "\n";
@@ -72,6 +61,17 @@ struct Active {
 };
 
 }  // namespace
+
+bool IsFailedRecord(const fs::path& run_dir) {
+  std::ifstream in(run_dir / "run.json");
+  if (!in) return true;  // a complete folder without a record is not a result
+  try {
+    const json r = json::parse(in);
+    return r.value("status", "") != "ok";
+  } catch (const json::exception&) {
+    return true;
+  }
+}
 
 RunTotals RunCampaign(const Plan& plan, const fs::path& out_dir, const RunOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();

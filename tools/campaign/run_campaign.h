@@ -42,6 +42,10 @@ struct RunTotals {
   double cpu_s{0.0};   ///< user + system CPU time of this process (not of the runs)
 };
 
+/** Whether a complete run's folder holds no successful result (run.json missing, unreadable,
+ *  or its status not ok). */
+bool IsFailedRecord(const std::filesystem::path& run_dir);
+
 /** Runs the plan's runs in `o.first..o.last` in the campaign folder (created or checked).
  *  SIGINT/SIGTERM stop it: running runs are stopped and left to be redone. */
 RunTotals RunCampaign(const Plan& plan, const std::filesystem::path& out_dir, const RunOptions& o);

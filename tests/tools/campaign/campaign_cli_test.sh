@@ -76,6 +76,8 @@ out=$("$tool" run re.yaml -j 2 2>err); rc=$?
 check [ $rc = 3 ]
 check [ "$(json_field failed_before "$out")" = 2 ]
 check grep -q "2 run(s) of the folder failed before and were not run again; \`run --retry-failed\` redoes them" err
+out=$("$tool" plan re.yaml 2>/dev/null)
+check grep -q "folder: 2 of 2 runs complete (2 failed: \`run --retry-failed\` redoes them), 0 half done" <<<"$out"
 # Fixed: the failed runs are redone, no flag needed.
 printf 'output: out-re\nscenarios: [a/scenario.cfg]\ngrid:\n  sumo:\n    seed: [1, 2]\n' >re.yaml
 out=$("$tool" run re.yaml -j 2 2>err); rc=$?
