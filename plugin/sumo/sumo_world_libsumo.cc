@@ -77,7 +77,10 @@ std::unique_ptr<SumoWorld> StartLibsumo(const std::vector<std::string>& args) {
   // collision.action: it runs with the default and still exits 0); the run would not be the one
   // asked for. The campaign's plan check refuses them too.
   if (!errors.empty()) {
-    libsumo::Simulation::close();
+    try {
+      libsumo::Simulation::close();
+    } catch (...) {  // the load's errors are the message
+    }
     throw SumoError("SUMO reported errors while loading (" + errors +
                     "); fix the SUMO configuration or options");
   }

@@ -58,7 +58,7 @@ double SlurmTimeSeconds(const std::string& text) {
         if (cur.empty()) return false;
         out->push_back(std::stol(cur));
         cur.clear();
-      } else if (std::isdigit(static_cast<unsigned char>(t[k]))) {
+      } else if (std::isdigit(static_cast<unsigned char>(t[k])) && cur.size() < 9) {
         cur += t[k];
       } else {
         return false;

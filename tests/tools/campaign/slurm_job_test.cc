@@ -23,6 +23,7 @@ TEST(SlurmJob, SlurmTimesInEveryFormat) {
   EXPECT_EQ(SlurmTimeSeconds(""), -1.0);
   EXPECT_EQ(SlurmTimeSeconds("unlimited"), -1.0);
   EXPECT_EQ(SlurmTimeSeconds("1:2:3:4"), -1.0);
+  EXPECT_EQ(SlurmTimeSeconds("99999999999999999999"), -1.0);  // no overflow
 }
 
 // 10 runs in tasks of 5 (max_array_size 2), each run up to 120 s: 600 s per task on one CPU.
