@@ -1,5 +1,9 @@
 #include "plugin/act/act_stage.h"
 
+#include <cstdio>
+
+#include "plugin/act/present_contacts.h"
+
 namespace criticality::plugin {
 
 double WarnValue(WarnOn on, const Result& r) {
@@ -42,6 +46,7 @@ ActStage::ActStage(const ActConfig& config, SumoWorld* world, double step_s,
                    std::function<Result(const Scene&)> estimate)
     : config_(config),
       world_(world),
+      estimate_(estimate),
       episodes_(config.warning),
       closed_loop_(config.closed_loop, world, step_s,
                    estimate
@@ -100,6 +105,31 @@ EgoStep ActStage::Row(const ObjectSnapshot& ego, const Result& r) const {
   return step;
 }
 
+void ActStage::CloseTheLoop(double t, const ObjectSnapshot& ego, const Scene& scene,
+                            const Result& r, double p, ActOutcome* out) {
+  // The closed loop decides on the scene without the objects in contact with the ego now
+  // (present_contacts.h): re-estimated only where it would act on p (engaged, or p at the
+  // engage threshold) and there is such a contact.
+  std::vector<std::string> contacts;
+  if (estimate_ && (closed_loop_.PhaseOf(ego.id) != ClosedLoop::Phase::kIdle ||
+                    p >= config_.closed_loop.policy.engage_threshold))
+    contacts = ObjectsInContact(scene);
+  if (contacts.empty()) {
+    closed_loop_.Step(t, ego, scene, r, p, &out->actions);
+    return;
+  }
+  const Scene cleared = WithoutObjects(scene, contacts);
+  const Result without = estimate_(cleared);
+  const size_t first_new = out->actions.size();
+  closed_loop_.Step(t, ego, cleared, without, WarnValue(config_.warn_on, without), &out->actions);
+  std::string names;
+  for (const std::string& id : contacts) names += (names.empty() ? "" : " ") + id;
+  char b[96];
+  std::snprintf(b, sizeof b, " (%.3f with them)", p);
+  for (size_t a = first_new; a < out->actions.size(); ++a)
+    out->actions[a].detail += "; decided without the objects in contact now: " + names + b;
+}
+
 ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
                          const std::vector<Result>& results, const PublishTo& publish) {
   ActOutcome out;
@@ -109,8 +139,7 @@ ActOutcome ActStage::Run(const Observation& obs, const SceneBatch& batch,
     const Result& r = results[k];
     const double p = WarnValue(config_.warn_on, r);
     if (config_.act != Act::kNone) Warn(ego, r, obs.time_s, p, publish.Reaches(ego.id), &out);
-    if (config_.act == Act::kBrake)
-      closed_loop_.Step(obs.time_s, ego, batch.scenes[k], r, p, &out.actions);
+    if (config_.act == Act::kBrake) CloseTheLoop(obs.time_s, ego, batch.scenes[k], r, p, &out);
     out.steps.push_back(Row(ego, r));
   }
   return out;

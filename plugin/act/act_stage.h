@@ -31,8 +31,8 @@ struct PublishTo {
 
 class ActStage {
  public:
-  /** `estimate`: the estimator, for the closed loop's hand-back check (ClosedLoop::HandBackRisk;
-   *  empty: no check). */
+  /** `estimate`: the estimator, for the closed loop's hand-back check (ClosedLoop::HandBackRisk)
+   *  and its scenes without the objects in contact now (CloseTheLoop); empty: neither. */
   ActStage(const ActConfig& config, SumoWorld* world, double step_s,
            std::function<Result(const Scene&)> estimate = {});
   ActOutcome Run(const Observation& obs, const SceneBatch& batch,
@@ -46,9 +46,14 @@ class ActStage {
   void Warn(const ObjectSnapshot& ego, const Result& r, double t, double p, bool publish,
             ActOutcome* out);
   EgoStep Row(const ObjectSnapshot& ego, const Result& r) const;
+  /** The closed loop's step for one ego; where objects are in contact with it now, on the
+   *  scene without them, re-estimated (present_contacts.h). */
+  void CloseTheLoop(double t, const ObjectSnapshot& ego, const Scene& scene, const Result& r,
+                    double p, ActOutcome* out);
 
   ActConfig config_;
   SumoWorld* world_;
+  std::function<Result(const Scene&)> estimate_;
   WarningEpisodes episodes_;
   ClosedLoop closed_loop_;
 };

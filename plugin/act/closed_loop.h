@@ -75,6 +75,7 @@ class ClosedLoop {
     LaneChange lane_change{LaneChange::kNone};
     PendingChange pending;
     double hand_back_p{-1.0};  ///< this step's HandBackRisk; -1: none made this step
+    double engaged_p{0.0};     ///< the estimate that took control (the brake row reports it)
   };
   // What one step of an engaged ego sees.
   struct Now {

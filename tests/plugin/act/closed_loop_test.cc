@@ -98,6 +98,10 @@ TEST(ClosedLoop, TakesControlBrakesAfterTheLatencyAtTheJerkLimitAndHandsBackOnce
   ASSERT_EQ(f.world.commands, std::vector<std::string>{"speed ego 19.70"});  // -3 m/s^2 first
   ASSERT_EQ(f.Kinds(), std::vector<std::string>{"brake"});
   EXPECT_DOUBLE_EQ(f.actions[0].accel_mps2, -3.0);
+  // The row comes when the brake acts; it says which step and estimate took control.
+  EXPECT_NE(f.actions[0].detail.find("control taken at 0.00 s at 0.950, the route's target -6.0"),
+            std::string::npos)
+      << f.actions[0].detail;
   f.StepAt(0.3, 0.95, {Route(-6.0)});
   EXPECT_EQ(f.world.commands.back(), "speed ego 19.40");  // -6 m/s^2 reached (30 m/s^3)
   // The danger is gone: p low, a route that does not brake. Control stays for --act-hold
@@ -218,6 +222,32 @@ TEST(ClosedLoop, TheReleaseWaitsWhileEveryRouteAsSafeAsTheBestBrakes) {
   EXPECT_TRUE(f.loop.Acting("ego"));
   f.StepAt(3.0, 0.1, {Route(-4.0), Route(0.0, false, 0.005)});  // a non-braking one as safe
   EXPECT_FALSE(f.loop.Acting("ego"));
+}
+
+// With the hand-back check the braking routes do not hold the release: handing back is judged
+// by the scene re-estimated as SUMO would drive it (0.0 here), so the release comes after the
+// hold (1.0 s) and 0.5 s below the threshold, as the policy says. Fails with the route rule
+// applied as well (every ranked route brakes: the ego is held to the end, as a car on a
+// motorway was braked from 29 to 1 m/s at p 0.000).
+TEST(ClosedLoop, WithTheHandBackCheckBrakingRoutesDoNotHoldTheRelease) {
+  Fixture f;
+  int checks = 0;
+  ClosedLoop checked(Config(), &f.world, kDt, [&](const Scene&) {
+    ++checks;
+    return 0.0;
+  });
+  for (int k = 0; k <= 10; ++k) {
+    f.result.escape_routes = {Route(-4.0)};
+    checked.Step(0.1 * k, f.ego, f.scene, f.result, k < 3 ? 0.95 : 0.1, &f.actions);
+    if (k < 10) {
+      ASSERT_TRUE(checked.Acting("ego")) << "t = " << 0.1 * k;
+    }
+  }
+  EXPECT_FALSE(checked.Acting("ego"));
+  EXPECT_GE(checks, 1);
+  ASSERT_EQ(f.Kinds(), (std::vector<std::string>{"brake", "release"}));
+  EXPECT_NE(f.actions.back().detail.find("estimate if handed back 0.000"), std::string::npos)
+      << f.actions.back().detail;
 }
 
 // The scenario forces `forced_mps` (SUMO's car following behind its leader gives `follow_mps`): the
