@@ -74,7 +74,12 @@ int main(int argc, char** argv) {
       "json", po::bool_switch(&json), "one JSON object as the last line");
   try {
     po::variables_map vm;
-    po::store(po::parse_command_line(argc, argv, desc), vm);
+    po::store(po::command_line_parser(argc, argv)
+                  .options(desc)
+                  .style(po::command_line_style::default_style &
+                         ~po::command_line_style::allow_guessing)  // whole names only
+                  .run(),
+              vm);
     if (vm.count("help")) {
       std::cout << desc;
       return 0;

@@ -578,7 +578,12 @@ int main(int argc, char** argv) {
       "with --paths-json: hypotheses of each kind");
   try {
     po::variables_map vm;
-    po::store(po::parse_command_line(argc, argv, desc), vm);
+    po::store(po::command_line_parser(argc, argv)
+                  .options(desc)
+                  .style(po::command_line_style::default_style &
+                         ~po::command_line_style::allow_guessing)  // whole names only
+                  .run(),
+              vm);
     if (vm.count("help")) {
       std::cout << desc
                 << "\nExample: criticality-bench --scene S2 --backend reference --repeat 3\n";

@@ -31,6 +31,7 @@ std::string WithOptionNames(std::string msg) {
   const std::pair<const char*, const char*> names[] = {
       {"params.horizon_s", "--horizon"},
       {"params.step_s", "--step"},
+      {"must not exceed horizon_s", "must not exceed --horizon"},
       {"params.profiles", "--profiles"},
       {"params.own_lane_samples", "--own-lane-samples"},
       {"params.neighbour_lane_samples", "--neighbour-lane-samples"},
@@ -49,7 +50,14 @@ std::string WithOptionNames(std::string msg) {
 void StoreCommandLine(const std::vector<const char*>& own, const OptionTable& table,
                       po::variables_map* vm) {
   try {
-    po::store(po::parse_command_line(static_cast<int>(own.size()), own.data(), table.all()), *vm);
+    // Whole option names only: Boost's default style also takes an unambiguous prefix, so a
+    // misspelt --all-vehicle ran as --all-vehicles and --thr 2 as --threads 2, unannounced.
+    const int style = po::command_line_style::default_style & ~po::command_line_style::allow_guessing;
+    po::store(po::command_line_parser(static_cast<int>(own.size()), own.data())
+                  .options(table.all())
+                  .style(style)
+                  .run(),
+              *vm);
   } catch (const po::unknown_option& e) {
     std::string name = e.get_option_name();
     while (!name.empty() && name[0] == '-') name.erase(0, 1);

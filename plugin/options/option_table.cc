@@ -113,9 +113,10 @@ void OptionTable::Acting(DriverOptions* o) {
       "no-steer", po::bool_switch(&o->act.closed_loop.no_steer),
       "--act brake only brakes: follows the best escape route that keeps its lane")(
       "no-hand-back-check", po::bool_switch(&raw.no_hand_back_check),
-      "ablation (ours): --act brake hands control back once the estimate is low; by default "
-      "it also re-estimates the scene with the ego as SUMO would drive it after the hand-back, "
-      "and waits while that is at or above --brake-release");
+      "ablation (ours): --act brake hands control back once the estimate is low and a route "
+      "as safe as the best one does not brake; by default it instead re-estimates the scene "
+      "with the ego as SUMO would drive it after the hand-back, and waits while that is at or "
+      "above --brake-release");
   all_.add(a);
 }
 
@@ -154,7 +155,9 @@ void OptionTable::Estimator(DriverOptions* o) {
       "lateral path samples across each neighbouring lane (paper: 2); ego paths = samples^3")(
       "horizon", Value(&p.horizon_s),
       "prediction horizon (s); the path sample instants (paper: 1.0, 1.5, 2.0 s of 2 s) scale "
-      "with it")("step", Value(&p.step_s), "prediction step (s)")(
+      "with it")("step", Value(&p.step_s),
+                  "the estimator's prediction step (s; not SUMO's --step-length, which goes "
+                  "after '--')")(
       "range", Value(&o->observe.range_m),
       "vehicles and pedestrians within this distance of an ego are considered (m)")(
       "no-simd", po::bool_switch(&raw.no_simd),

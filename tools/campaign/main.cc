@@ -85,7 +85,13 @@ bool Parse(const std::vector<std::string>& args, po::options_description& opts,
   po::positional_options_description pos;
   if (!positional.empty()) pos.add(positional.c_str(), 1);
   try {
-    po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
+    po::store(po::command_line_parser(args)
+                  .options(opts)
+                  .positional(pos)
+                  .style(po::command_line_style::default_style &
+                         ~po::command_line_style::allow_guessing)  // whole names only
+                  .run(),
+              vm);
     if (vm.count("help")) {
       std::cout << usage << "\n" << opts << "\n";
       return false;

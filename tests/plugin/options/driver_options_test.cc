@@ -82,6 +82,33 @@ TEST(DriverOptions, CommandLine) {
   }
 }
 
+// Only whole option names: Boost's default style also takes an unambiguous prefix, and a
+// misspelt --all-vehicle ran a whole run as --all-vehicles, --thr 2 as --threads 2. And a
+// --step above the horizon is named in the user's terms, not by a Params field.
+TEST(DriverOptions, AnOptionsPrefixIsNoOptionAndErrorsNameOptions) {
+  const std::string cfg = SumoCfg();
+  for (const std::vector<const char*>& extra :
+       {std::vector<const char*>{"--all-vehicle"}, std::vector<const char*>{"--thr", "2"}}) {
+    std::vector<const char*> args = {"-c", cfg.c_str(), "--output", "x.sqlite"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    try {
+      Parse(args);
+      ADD_FAILURE() << extra[0] << " accepted";
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("'") + extra[0] + "'"), std::string::npos)
+          << e.what();
+    }
+  }
+  try {
+    Parse({"-c", cfg.c_str(), "--ego", "a", "--output", "x.sqlite", "--step", "5"});
+    ADD_FAILURE() << "--step 5 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--step = 5: must not exceed --horizon"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(DriverOptions, ConfigFileIsRelativeToItsFolderAndCommandLineWins) {
   const std::string dir = ::testing::TempDir();
   {
