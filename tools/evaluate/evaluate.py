@@ -101,8 +101,9 @@ def git_describe():
 
 
 def run_family(a, chosen, info):
-    """The held-out protocol (--family): generate the networks, run each open-loop variant
-    over them with every vehicle an ego, write family.* into OUT."""
+    """The held-out protocol (--family): generate the networks, run each variant over them
+    with every vehicle an ego (closed-loop variants under --act brake), write family.* into
+    OUT."""
     out = os.path.abspath(a.out)
     nets = network_family.family(a.family)
     try:
@@ -110,12 +111,11 @@ def run_family(a, chosen, info):
     except (RuntimeError, OSError) as e:
         log(f"evaluate: {e}")
         return 2
-    open_variants = [v for v in chosen if v.loop == "open"]
     runs_dir = os.path.join(out, "runs")
     if not a.report_only:
         runner = campaign_runs.CampaignRunner(a.campaign_tool, a.driver, runs_dir, a.jobs, log)
         try:
-            for v in open_variants:
+            for v in chosen:
                 t0 = time.time()
                 driver = dict(v.options, **{"all-vehicles": "true", "threads": 1})
                 runner.run("family-" + v.name, cfgs, driver, {}, a.family_time_limit, a.resume)
@@ -124,14 +124,14 @@ def run_family(a, chosen, info):
             log(f"evaluate: {e}")
             return 1
     rows = []
-    for v in open_variants:
+    for v in chosen:
         by = family_eval.read_runs(os.path.join(runs_dir, "family-" + v.name))
         rows += [family_eval.judge(v.name, n, by.get(n.name)) for n in nets]
     lines = [f"- {info['date']}, commit {info['commit']}, `{info['command']}`",
              f"- profile {a.family}: {len(nets)} networks "
              f"({sum(n.split == 'tuning' for n in nets)} tuning, "
              f"{sum(n.split == 'held-out' for n in nets)} held-out); variants "
-             f"{', '.join(v.name for v in open_variants)}"]
+             f"{', '.join(v.name for v in chosen)}"]
     family_eval.write(out, rows, lines)
     info["networks"] = [{"name": n.name, "split": n.split} for n in nets]
     with open(os.path.join(out, "run_info.json"), "w", encoding="utf-8") as f:

@@ -1,5 +1,5 @@
-"""The evaluation on the held-out protocol's network family (network_family.py): every open-loop
-variant chosen runs every network of the profile with every vehicle an ego (`--all-vehicles
+"""The evaluation on the held-out protocol's network family (network_family.py): every variant
+chosen (a closed-loop one with `--act brake`) runs every network of the profile with every vehicle an ego (`--all-vehicles
 --act warn`), through criticality-campaign; then, per network and per set (tuning, held-out):
 vehicle-hours of estimation, warnings and false alarms per vehicle-hour (the views of
 plugin/record/result_views.sql, as for the city-like run: city_false_alarms.py), the false
@@ -55,6 +55,7 @@ class FamilyRow:
     collisions: int = 0
     warned_collisions: int = 0
     anticipation_s: list = None  # of the warned collisions
+    actions: int = 0  # the closed loop's (--act brake; 0 under --act warn)
 
     @property
     def warnings_per_vehicle_hour(self):
@@ -88,7 +89,7 @@ class FamilyRow:
                                            "status", "vehicle_hours", "egos", "warnings",
                                            "false_alarms", "unjudged",
                                            "judged_vehicle_hours", "rewarnings", "collisions",
-                                           "warned_collisions")}
+                                           "warned_collisions", "actions")}
         d.update(warnings_per_vehicle_hour=self.warnings_per_vehicle_hour,
                  false_alarms_per_vehicle_hour=self.false_alarms_per_vehicle_hour,
                  judged_false_alarms_per_vehicle_hour=self.judged_false_alarms_per_vehicle_hour,
@@ -178,6 +179,7 @@ def judge(variant, net, run):
     row.collisions = len(ant)
     row.anticipation_s = [a for a in ant if a is not None]
     row.warned_collisions = len(row.anticipation_s)
+    row.actions = int((run.summary or {}).get("actions", 0) or 0)
     return row
 
 
@@ -207,6 +209,7 @@ def sets(rows, by_step=False):
             s.dp_sign_changes += r.dp_sign_changes
             s.collisions += r.collisions
             s.warned_collisions += r.warned_collisions
+            s.actions += r.actions
         s.anticipation_s = [a for r in ok for a in (r.anticipation_s or [])]
         out.append(s)
     return out
@@ -217,12 +220,12 @@ COLUMNS = ["variant", "split", "network", "step_s", "status", "vehicle_hours", "
            "false_alarms_per_vehicle_hour", "unjudged", "judged_vehicle_hours",
            "judged_false_alarms_per_vehicle_hour", "rewarnings", "rewarnings_per_vehicle_hour",
            "dp_sign_changes_per_warning", "collisions", "warned_collisions",
-           "median_anticipation_s"]
+           "median_anticipation_s", "actions"]
 HEADERS = ["variant", "set", "network", "step (s)", "status", "vehicle-hours", "egos",
            "warnings", "warnings / veh-h", "false alarms", "false alarms / veh-h", "unjudged",
            "judged veh-h", "judged false alarms / veh-h", "re-warnings",
            "re-warnings / veh-h", "dp sign changes / warning", "collisions", "warned collisions",
-           "median anticipation (s)"]
+           "median anticipation (s)", "closed-loop actions"]
 SET_COLUMNS = [c for c in COLUMNS if c != "step_s"]
 SET_HEADERS = [h for c, h in zip(COLUMNS, HEADERS) if c != "step_s"]
 
@@ -236,7 +239,10 @@ def write(out, rows, info_lines):
     tables.write_csv(os.path.join(out, "family_sets.csv"), summary, SET_COLUMNS)
     tables.write_csv(os.path.join(out, "family_set_steps.csv"), by_step, COLUMNS)
     intro = ["# Held-out networks (tools/evaluate/network_family.py)", ""] + info_lines + [
-        "", "Every vehicle an ego, `--act warn`. A false alarm: a warning episode that no "
+        "", "Every vehicle an ego, `--act warn` (a closed-loop variant: `--act brake`, every "
+        "vehicle braked and steered by the closed loop; its collisions beside ours' are what "
+        "the closed loop changed, and 'closed-loop actions' counts its brake, steer and release "
+        "rows). A false alarm: a warning episode that no "
         "collision, body overlap or hard braking of its ego followed within "
         f"{city_false_alarms.GRACE_S:g} s of its end. Unjudged: a false alarm whose window (from "
         f"the episode's start to {city_false_alarms.GRACE_S:g} s after its end) runs past the "

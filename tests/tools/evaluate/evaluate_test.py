@@ -545,6 +545,28 @@ class FamilyEvalTest(unittest.TestCase):
             self.assertIn("| ours | tuning | 1 of 1 networks |", text)
             self.assertTrue(os.path.exists(os.path.join(d, "family.html")))
 
+    def test_closed_loop_actions_are_counted_per_network_and_summed_per_set(self):
+        # The closed-loop variant's rows carry the driver's summary count of actions; the set
+        # row sums them and family.md has the column. Catches a count that is dropped, taken
+        # from another variant's run, or not summed.
+        braked = make_run("grid1_1s", "a", [0.0] * 100)
+        braked.summary["actions"] = 7
+        other = make_run("grid2_1s", "a", [0.0] * 100)
+        other.summary["actions"] = 5
+        warned = make_run("grid1_1s", "a", [0.0] * 100)
+        rows = [family_eval.judge("closed-loop", network_family.Network("grid", 1, 1.0), braked),
+                family_eval.judge("closed-loop", network_family.Network("grid", 2, 1.0), other),
+                family_eval.judge("ours", network_family.Network("grid", 1, 1.0), warned)]
+        self.assertEqual([r.actions for r in rows], [7, 5, 0])
+        by = {(s.variant, s.split): s for s in family_eval.sets(rows)}
+        self.assertEqual(by[("closed-loop", "tuning")].actions, 12)
+        self.assertEqual(by[("ours", "tuning")].actions, 0)
+        with tempfile.TemporaryDirectory() as d:
+            family_eval.write(d, rows, ["- test"])
+            text = open(os.path.join(d, "family.md"), encoding="utf-8").read()
+            self.assertIn("closed-loop actions |", text)
+            self.assertIn("| closed-loop | tuning | 2 of 2 networks |", text)
+
     def test_an_episode_whose_window_runs_past_the_end_is_unjudged(self):
         # A 0.1 s run whose last step is 59.9 s: ego a from 0 s (600 steps), b from 30 s (300),
         # c from 0 s until it left at 19.9 s (200).
