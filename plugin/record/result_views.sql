@@ -109,7 +109,7 @@ FROM {{collisions}} c JOIN {{warnings}} w
 CREATE VIEW {{schema}}.collision_anticipation AS
 SELECT k.collision_rowid AS collision_rowid, k.{{run_key}} AS {{run_key}}, k.time_s AS time_s,
        k.collider AS collider, k.victim AS victim, k.warning_start_s AS warning_start_s,
-       k.time_s - k.warning_start_s AS anticipation_s
+       ROUND(k.time_s - k.warning_start_s, 6) AS anticipation_s  -- no 0.8999999999 from the subtraction
 FROM (SELECT c.rowid AS collision_rowid, c.{{run_key}} AS {{run_key}}, c.time_s AS time_s,
              c.collider AS collider, c.victim AS victim,
              (SELECT cw.credited_s FROM collision_warnings cw

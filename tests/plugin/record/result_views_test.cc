@@ -263,12 +263,14 @@ TEST(ResultViews, AnticipationCountsAnEpisodeEndedOneStepBeforeTheImpactNotTwo) 
   Collision(db, 4.5, "z", "w");  // no episode of its vehicles
   const auto got = db.Reals("SELECT anticipation_s FROM collision_anticipation ORDER BY time_s");
   ASSERT_EQ(got.size(), 7u);
-  EXPECT_EQ(got[0], std::optional<double>(1.6 - 1.0));  // the same subtraction as the driver's
+  // Rounded to 1e-6 s: 0.6, not the subtraction's 0.6000000000000001.
+  EXPECT_EQ(got[0], std::optional<double>(0.6));
+  EXPECT_NE(1.6 - 1.0, 0.6);
   EXPECT_EQ(got[1], std::nullopt);
   EXPECT_EQ(got[2], std::nullopt);
-  EXPECT_EQ(got[3], std::optional<double>(3.4 - 3.0));
-  EXPECT_EQ(got[4], std::optional<double>(3.5 - 3.0));
-  EXPECT_EQ(got[5], std::optional<double>(4.4 - 4.2));
+  EXPECT_EQ(got[3], std::optional<double>(0.4));
+  EXPECT_EQ(got[4], std::optional<double>(0.5));
+  EXPECT_EQ(got[5], std::optional<double>(0.2));
   EXPECT_EQ(got[6], std::nullopt);
 }
 
@@ -303,7 +305,7 @@ TEST(ResultViews, AnticipationCountsFromTheFirstStepThatNamedThePartner) {
   MainObject(db, "d", 4.4, "car");
   Collision(db, 4.4, "d", "car");
   EXPECT_EQ(db.Reals("SELECT anticipation_s FROM collision_anticipation ORDER BY time_s"),
-            (std::vector<std::optional<double>>{1.5 - 1.2, std::nullopt, 3.6 - 3.0,
+            (std::vector<std::optional<double>>{0.3, std::nullopt, 0.6,
                                                 std::nullopt}));
 }
 
@@ -343,7 +345,7 @@ TEST(ResultViews, CampaignKeysJudgeEachRunByItsRunIndex) {
                      "temp.warning_outcomes ORDER BY run_index"),
             (std::vector<std::optional<std::string>>{"0:-", "1:collision"}));
   EXPECT_EQ(db.Reals("SELECT anticipation_s FROM temp.collision_anticipation"),
-            (std::vector<std::optional<double>>{1.2 - 1.0}));
+            (std::vector<std::optional<double>>{0.2}));
 }
 
 // The evaluation's replayed (or SSM's) episodes in a table of their own, judged by the same rule.
