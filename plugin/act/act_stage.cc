@@ -107,12 +107,13 @@ EgoStep ActStage::Row(const ObjectSnapshot& ego, const Result& r) const {
 
 void ActStage::CloseTheLoop(double t, const ObjectSnapshot& ego, const Scene& scene,
                             const Result& r, double p, ActOutcome* out) {
-  // The closed loop decides on the scene without the objects in contact with the ego now
-  // (present_contacts.h): re-estimated only where it would act on p (engaged, or p at the
-  // engage threshold) and there is such a contact.
+  // For a standing ego the closed loop decides on the scene without the objects in contact
+  // with it now (present_contacts.h): re-estimated only where it would act on p (engaged, or p
+  // at the engage threshold) and there is such a contact.
   std::vector<std::string> contacts;
-  if (estimate_ && (closed_loop_.PhaseOf(ego.id) != ClosedLoop::Phase::kIdle ||
-                    p >= config_.closed_loop.policy.engage_threshold))
+  if (estimate_ && ego.state.speed_mps < kStandingMps &&
+      (closed_loop_.PhaseOf(ego.id) != ClosedLoop::Phase::kIdle ||
+       p >= config_.closed_loop.policy.engage_threshold))
     contacts = ObjectsInContact(scene);
   if (contacts.empty()) {
     closed_loop_.Step(t, ego, scene, r, p, &out->actions);

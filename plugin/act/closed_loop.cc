@@ -94,27 +94,23 @@ void ClosedLoop::Step(double t, const ObjectSnapshot& ego, const Scene& scene, c
 }
 
 bool ClosedLoop::MayRelease(const Now& n, Engagement* s) const {
-  // The release waits at a standstill while SUMO's own choice is a speed the scenario forces
-  // (its driver would drive on into what stopped it: an emergency brake holds the vehicle
-  // then). Where the release could come (p below its threshold), it also waits while handing
-  // back would be critical again (HandBackRisk at or above the release threshold). Without that
-  // check (--no-hand-back-check, or no estimator to make it) it waits instead, unless the
-  // engagement's lane change is done (the old lane's danger is gone), while every escape route
-  // as safe as the best one that the closed loop can execute brakes: p, computed with the ego
-  // braking, says little about handing back. With the check that proxy is not asked: the routes
-  // ranked first are the most probable ones, which brake as long as the ego brakes, so it held a
-  // car braking at 4.5 m/s^2 from 29 to 1 m/s for 6 s at p 0.000 after a one-step p of 0.94,
-  // while the hand-back estimate was 0.000 (bench/RESULTS.md, twenty-second stop).
+  // The release waits, unless the engagement's lane change is done (the old lane's danger is
+  // gone), while every escape route as safe as the best one that the closed loop can execute
+  // brakes (p, computed with the ego braking, says little about handing back), and at a
+  // standstill while SUMO's own choice is a speed the scenario forces (its driver would drive
+  // on into what stopped it: an emergency brake holds the vehicle then). Where the release
+  // could come (p below its threshold), it also waits while handing back would be critical
+  // again (HandBackRisk at or above the release threshold).
   const VehicleControl& c = n.control;
   s->hand_back_p = -1.0;  // this step's estimate only (the release row reports it)
-  const bool checked = config_.hand_back_check && hand_back_risk_;
   const bool changed_lane = s->lane_change == LaneChange::kDone;
-  const bool still_braking =
-      !checked && !changed_lane && !AnyNonBrakingRoute(n.result->escape_routes, c);
+  const bool still_braking = !changed_lane && !AnyNonBrakingRoute(n.result->escape_routes, c);
   const bool held_stopped = s->speed_in_force && n.v() < kStandstill && c.forced &&
                             c.own_speed_mps > n.v() + c.accel_mps2 * dt_ + kJumpMargin;
   if (still_braking || held_stopped) return false;
-  if (!checked || !s->speed_in_force || n.p >= config_.policy.release_threshold) return true;
+  if (!config_.hand_back_check || !hand_back_risk_ || !s->speed_in_force ||
+      n.p >= config_.policy.release_threshold)
+    return true;
   s->hand_back_p = HandBackRisk(n);
   return s->hand_back_p < config_.policy.release_threshold;
 }

@@ -113,10 +113,9 @@ void OptionTable::Acting(DriverOptions* o) {
       "no-steer", po::bool_switch(&o->act.closed_loop.no_steer),
       "--act brake only brakes: follows the best escape route that keeps its lane")(
       "no-hand-back-check", po::bool_switch(&raw.no_hand_back_check),
-      "ablation (ours): --act brake hands control back once the estimate is low and a route "
-      "as safe as the best one does not brake; by default it instead re-estimates the scene "
-      "with the ego as SUMO would drive it after the hand-back, and waits while that is at or "
-      "above --brake-release");
+      "ablation (ours): --act brake hands control back once the estimate is low; by default "
+      "it also re-estimates the scene with the ego as SUMO would drive it after the hand-back, "
+      "and waits while that is at or above --brake-release");
   all_.add(a);
 }
 

@@ -224,32 +224,6 @@ TEST(ClosedLoop, TheReleaseWaitsWhileEveryRouteAsSafeAsTheBestBrakes) {
   EXPECT_FALSE(f.loop.Acting("ego"));
 }
 
-// With the hand-back check the braking routes do not hold the release: handing back is judged
-// by the scene re-estimated as SUMO would drive it (0.0 here), so the release comes after the
-// hold (1.0 s) and 0.5 s below the threshold, as the policy says. Fails with the route rule
-// applied as well (every ranked route brakes: the ego is held to the end, as a car on a
-// motorway was braked from 29 to 1 m/s at p 0.000).
-TEST(ClosedLoop, WithTheHandBackCheckBrakingRoutesDoNotHoldTheRelease) {
-  Fixture f;
-  int checks = 0;
-  ClosedLoop checked(Config(), &f.world, kDt, [&](const Scene&) {
-    ++checks;
-    return 0.0;
-  });
-  for (int k = 0; k <= 10; ++k) {
-    f.result.escape_routes = {Route(-4.0)};
-    checked.Step(0.1 * k, f.ego, f.scene, f.result, k < 3 ? 0.95 : 0.1, &f.actions);
-    if (k < 10) {
-      ASSERT_TRUE(checked.Acting("ego")) << "t = " << 0.1 * k;
-    }
-  }
-  EXPECT_FALSE(checked.Acting("ego"));
-  EXPECT_GE(checks, 1);
-  ASSERT_EQ(f.Kinds(), (std::vector<std::string>{"brake", "release"}));
-  EXPECT_NE(f.actions.back().detail.find("estimate if handed back 0.000"), std::string::npos)
-      << f.actions.back().detail;
-}
-
 // The scenario forces `forced_mps` (SUMO's car following behind its leader gives `follow_mps`): the
 // loop engages for 0.3 s of p 0.95 and braking, then p stays low with a route that does not brake,
 // and the policy releases at 1.0 s.

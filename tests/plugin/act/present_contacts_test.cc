@@ -147,6 +147,21 @@ TEST(PresentContacts, TheClosedLoopTakesNoControlForABodyAlreadyInContact) {
   EXPECT_EQ(f.estimates, 50);  // the scene without the person, once a step
 }
 
+// A moving ego keeps its contacts: its braking still lowers the speed at which SUMO sees the
+// contact (the footprints may touch a step before SUMO reports a collision). Fails if contacts
+// are left out whatever the ego's speed (then no control is taken).
+TEST(PresentContacts, AMovingEgoStillBrakesForABodyInContact) {
+  LoopFixture f;
+  f.batch.objects[0].state.speed_mps = 5.0;
+  f.batch.scenes[0].ego.state.speed_mps = 5.0;
+  f.batch.scenes[0].pedestrians.push_back(PersonAt("over", 2.1, 1.1));
+  f.Run(1.0);
+  ASSERT_FALSE(f.actions.empty());
+  EXPECT_EQ(f.actions[0].kind, "brake");
+  EXPECT_EQ(f.actions[0].detail.find("in contact"), std::string::npos) << f.actions[0].detail;
+  EXPECT_EQ(f.estimates, 0);
+}
+
 // A threat that is not in contact engages the loop as before, also with a person in contact
 // beside it; the brake row then says what the decision left out. A car 0.5 m clear of the
 // ego's front is no contact: nothing is re-estimated and the row says nothing of contacts.
