@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/whole_option_names.h"
 #include "core/geometry.h"
 #include "core/oriented_box.h"
 
@@ -74,12 +75,7 @@ int main(int argc, char** argv) {
       "json", po::bool_switch(&json), "one JSON object as the last line");
   try {
     po::variables_map vm;
-    po::store(po::command_line_parser(argc, argv)
-                  .options(desc)
-                  .style(po::command_line_style::default_style &
-                         ~po::command_line_style::allow_guessing)  // whole names only
-                  .run(),
-              vm);
+    criticality::bench::StoreWholeNames(argc, argv, desc, &vm);
     if (vm.count("help")) {
       std::cout << desc;
       return 0;

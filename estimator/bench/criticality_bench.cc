@@ -17,6 +17,7 @@
 
 #include "bench/discrimination_scenes.h"
 #include "bench/paper_scenes.h"
+#include "bench/whole_option_names.h"
 #include "criticality/errors.h"
 #include "criticality/estimator.h"
 #include "criticality/scene_io.h"
@@ -578,12 +579,7 @@ int main(int argc, char** argv) {
       "with --paths-json: hypotheses of each kind");
   try {
     po::variables_map vm;
-    po::store(po::command_line_parser(argc, argv)
-                  .options(desc)
-                  .style(po::command_line_style::default_style &
-                         ~po::command_line_style::allow_guessing)  // whole names only
-                  .run(),
-              vm);
+    criticality::bench::StoreWholeNames(argc, argv, desc, &vm);
     if (vm.count("help")) {
       std::cout << desc
                 << "\nExample: criticality-bench --scene S2 --backend reference --repeat 3\n";
