@@ -279,8 +279,14 @@ void ClosedLoop::CommandSpeed(const Now& n, const EscapeRoute* route, bool threa
   in.elapsed_s = n.t - s->policy.engaged_since_s();
   in.previous_accel_mps2 = s->previous_accel;
   in.active = s->braking_started;
-  const SpeedCommand cmd =
-      threat_behind ? SpeedCommand{} : ClosedLoopSpeed(in, config_.brake, dt_);
+  // Braking answers a threat the estimate still sees: it starts (after the latency) only while
+  // p is at or above the release threshold, as a lateral manoeuvre does. At 1 s steps the
+  // latency ends a whole step after the decision, and brakes began at p 0.000 there, stopping
+  // a car from up to 9 m/s for a threat gone (bench/RESULTS.md, twenty-second stop).
+  const bool threat_seen = n.p >= config_.policy.release_threshold;
+  const SpeedCommand cmd = threat_behind || (!s->braking_started && !threat_seen)
+                               ? SpeedCommand{}
+                               : ClosedLoopSpeed(in, config_.brake, dt_);
   if (!cmd.command) {
     if (s->speed_in_force && HandBack(n.ego->id, c, n.v())) s->speed_in_force = false;
     return;

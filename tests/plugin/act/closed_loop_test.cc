@@ -123,6 +123,23 @@ TEST(ClosedLoop, TakesControlBrakesAfterTheLatencyAtTheJerkLimitAndHandsBackOnce
   EXPECT_EQ(f.world.commands.size(), calls);
 }
 
+// Braking answers a threat the estimate still sees: where p has fallen below the release
+// threshold by the time the latency ends, no brake starts (at 1 s steps brakes began at p 0.000
+// a whole step after the decision); once p is back up it does. Fails if the brake starts
+// whatever p is then.
+TEST(ClosedLoop, NoBrakeStartsWhileTheEstimateIsBelowTheReleaseThreshold) {
+  Fixture f;
+  f.StepAt(0.0, 0.95, {Route(-6.0)});
+  f.StepAt(0.1, 0.3, {Route(-6.0)});
+  f.StepAt(0.2, 0.3, {Route(-6.0)});  // the latency is over, the threat not seen
+  EXPECT_TRUE(f.world.commands.empty());
+  EXPECT_TRUE(f.actions.empty());
+  EXPECT_TRUE(f.loop.Acting("ego"));  // still engaged: the hold runs its course
+  f.StepAt(0.3, 0.95, {Route(-6.0)});
+  ASSERT_EQ(f.Kinds(), std::vector<std::string>{"brake"});
+  EXPECT_EQ(f.world.commands, std::vector<std::string>{"speed ego 19.70"});
+}
+
 TEST(ClosedLoop, OneApproachIsOneEngagementWhateverPDoesAboveTheRelease) {
   Fixture f;
   for (int k = 0; k < 30; ++k) f.StepAt(0.1 * k, k % 2 ? 0.6 : 0.95, {Route(-4.0)});
