@@ -111,7 +111,7 @@ void ActStage::CloseTheLoop(double t, const ObjectSnapshot& ego, const Scene& sc
   // with it now (present_contacts.h): re-estimated only where it would act on p (engaged, or p
   // at the engage threshold) and there is such a contact.
   std::vector<std::string> contacts;
-  if (estimate_ && ego.state.speed_mps < kStandingMps &&
+  if (estimate_ && ego.state.speed_mps < ClosedLoop::kStandstill &&
       (closed_loop_.PhaseOf(ego.id) != ClosedLoop::Phase::kIdle ||
        p >= config_.closed_loop.policy.engage_threshold))
     contacts = ObjectsInContact(scene);

@@ -216,8 +216,7 @@ void ClosedLoop::Control(const Now& n, Engagement* s, std::vector<ActionEvent>* 
   const EscapeRoute* route = Route(n, *s, lc, &plan);
   // A lateral manoeuvre answers a threat the estimate still sees: none starts while the loop
   // only waits to hand back (p below the release threshold during the hold).
-  const bool threat_seen = n.p >= config_.policy.release_threshold;
-  if (route && plan.direction != 0 && s->lane_change == LaneChange::kNone && threat_seen)
+  if (route && plan.direction != 0 && s->lane_change == LaneChange::kNone && ThreatSeen(n))
     Steer(n, *route, plan, lc, threat_behind, s, actions);
   if (s->lane_change == LaneChange::kPending && n.t + 1e-9 >= s->pending.at_s) {
     s->lane_change = LaneChange::kDone;
@@ -283,8 +282,7 @@ void ClosedLoop::CommandSpeed(const Now& n, const EscapeRoute* route, bool threa
   // p is at or above the release threshold, as a lateral manoeuvre does. At 1 s steps the
   // latency ends a whole step after the decision, and brakes began at p 0.000 there, stopping
   // a car from up to 9 m/s for a threat gone (bench/RESULTS.md, twenty-second stop).
-  const bool threat_seen = n.p >= config_.policy.release_threshold;
-  const SpeedCommand cmd = threat_behind || (!s->braking_started && !threat_seen)
+  const SpeedCommand cmd = threat_behind || (!s->braking_started && !ThreatSeen(n))
                                ? SpeedCommand{}
                                : ClosedLoopSpeed(in, config_.brake, dt_);
   if (!cmd.command) {

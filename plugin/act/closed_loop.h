@@ -58,6 +58,9 @@ class ClosedLoop {
   Phase PhaseOf(const std::string& ego) const;
   LaneChange LaneChangeOf(const std::string& ego) const;
 
+  /** Below this speed (m/s) an ego stands. */
+  static constexpr double kStandstill = 0.1;
+
  private:
   struct PendingChange {
     double at_s{0.0};
@@ -121,11 +124,13 @@ class ClosedLoop {
   /** Whether the closed loop can execute a route: it keeps its lane, or (steering allowed) it
    *  goes to a lane of the same edge. */
   bool Executable(const EscapeRoute& e, const VehicleControl& c) const;
+  /** Whether the estimate still sees the threat (p at or above the release threshold): only
+   *  then does a manoeuvre, lateral or braking, start. */
+  bool ThreatSeen(const Now& n) const { return n.p >= config_.policy.release_threshold; }
   /** Whether an executable route as safe as the best (within kSameRisk) does not brake. */
   bool AnyNonBrakingRoute(const std::vector<EscapeRoute>& ranked, const VehicleControl& c) const;
 
   static constexpr double kJumpMargin = 0.5;    // m/s
-  static constexpr double kStandstill = 0.1;    // m/s
   static constexpr double kBrakingAccel = 0.5;  // m/s^2: a route below -this still brakes
   static constexpr double kSameRisk = 0.01;     // collision probability: as safe as the best
   static constexpr double kMitigation = 0.5;    // route collision probability: brake fully

@@ -4,11 +4,12 @@
 // carriages, a person's footprint; touching counts, as in the estimator's collision test).
 //
 // Such a contact makes every ego hypothesis collide at the first step, so p is 1 whatever the
-// ego does, and it hides every other threat of the scene. For an ego that stands, the closed
-// loop decides on the scene without them (ActStage): holding a standing vehicle changes nothing
-// about a contact that has happened, and a hold kept for it never ends while the bodies stay
-// in contact (a car stopped on a crossing with a waiting pedestrian's footprint over its corner
-// was held for 73 s, until the pedestrian walked into it: bench/RESULTS.md, twenty-second stop).
+// ego does, and it hides every other threat of the scene. For an ego that stands
+// (ClosedLoop::kStandstill), the closed loop decides on the scene without them (ActStage):
+// holding a standing vehicle changes nothing about a contact that has happened, and a hold
+// kept for it never ends while the bodies stay in contact (a car stopped on a crossing with a
+// waiting pedestrian's footprint over its corner was held for 73 s, until the pedestrian
+// walked into it: bench/RESULTS.md, twenty-second stop).
 // A moving ego keeps them: its braking still lowers the speed at which SUMO sees the contact
 // (the estimator's footprints may touch a step before SUMO reports a collision).
 #include <string>
@@ -17,9 +18,6 @@
 #include "criticality/scene.h"
 
 namespace criticality::plugin {
-
-/** Below this speed (m/s) an ego stands. */
-inline constexpr double kStandingMps = 0.1;
 
 /** The IDs of the vehicles and pedestrians of `scene` whose body (or one of its carriages)
  *  overlaps the ego's at the scene's start, in scene order (vehicles first). */
