@@ -277,6 +277,9 @@ void Derive(DriverOptions* o) {
     Bad("--range " + Number(observe.range_m) + ": must be a finite distance > 0 m");
   observe.attached = !o->run.connect.empty();
   SceneConfig& scenes = o->scenes;
+  if (!(scenes.accel_window_s >= 0.0 && scenes.accel_window_s <= 10.0))
+    Bad("--accel-window " + Number(scenes.accel_window_s) +
+        ": must be a time from 0 to 10 s (0: SUMO's acceleration of the last step)");
   scenes.range_m = observe.range_m;
   scenes.horizon_s = o->params.horizon_s;
   scenes.max_accel_mps2 = o->params.vehicle_accel_max_mps2;

@@ -82,10 +82,37 @@ ObjectReader::ObjectReader(const SceneConfig& config, double step_s, RoadNetwork
 
 std::vector<ObjectSnapshot> ObjectReader::Read(const std::vector<SumoObject>& objects,
                                                double sumo_time_s) {
+  RememberAccels(objects, sumo_time_s);  // first: a leader's is read with its follower
   std::vector<ObjectSnapshot> out;
   out.reserve(objects.size());
   for (const SumoObject& o : objects) out.push_back(o.person ? Person(o) : Vehicle(o, sumo_time_s));
   return out;
+}
+
+void ObjectReader::RememberAccels(const std::vector<SumoObject>& objects, double sumo_time_s) {
+  if (!(config_.accel_window_s > 0.0)) return;
+  // A read belongs to the window while it is less than the window old: at 0.1 s steps and a
+  // 0.4 s window, the reads of now and the 3 steps before (the speed change over 0.4 s).
+  const double oldest = sumo_time_s - config_.accel_window_s + 1e-6;
+  for (const SumoObject& o : objects) {
+    if (o.person) continue;
+    std::deque<AccelRead>& reads = accel_reads_[o.id];
+    if (!reads.empty() && (sumo_time_s <= reads.back().time_s ||
+                           sumo_time_s - reads.back().time_s > 1.5 * step_s_))
+      reads.clear();  // not read at the step before (out of every ego's range, or the same step)
+    reads.push_back(AccelRead{sumo_time_s, o.accel_mps2});
+    while (reads.front().time_s < oldest) reads.pop_front();
+  }
+}
+
+double ObjectReader::WindowAccel(const std::string& id, double sumo_accel,
+                                 double sumo_time_s) const {
+  const auto it = accel_reads_.find(id);
+  if (it == accel_reads_.end() || it->second.empty() || it->second.back().time_s != sumo_time_s)
+    return sumo_accel;
+  double sum = 0.0;
+  for (const AccelRead& r : it->second) sum += r.accel_mps2;
+  return sum / static_cast<double>(it->second.size());
 }
 
 ObjectSnapshot ObjectReader::Person(const SumoObject& o) {
@@ -193,7 +220,7 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   s.state.y_m = c.y;
   s.state.yaw_rad = c.yaw;
   s.state.speed_mps = Speed(o.speed_mps);
-  s.state.accel_mps2 = o.accel_mps2;
+  s.state.accel_mps2 = WindowAccel(o.id, o.accel_mps2, sumo_time_s);
   s.normal_decel_mps2 = o.decel_mps2;
   // Yaw rate from the heading change since the previous step; 0 when the vehicle was not read
   // at the previous step. With long steps it is replaced below by its lane's. SUMO's angle (the
@@ -221,7 +248,7 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   if (s.parked) s.off_road = s.lane.empty() || OffItsLane(o);
   if (s.lane.empty()) return s;
   s.edge = network_->Lane(s.lane).edge;
-  s.leader = LeaderOf(o.id, s.state.speed_mps);  // expected_accel_mps2: ExpectCarFollowing
+  s.leader = LeaderOf(o.id, s.state.speed_mps, sumo_time_s);  // expected_accel_mps2: ExpectCarFollowing
   // SUMO's leader is looked for along the route: seen, only the one ahead in its own lane.
   if (config_.observable_only && s.leader &&
       s.leader->gap_m > network_->Lane(o.lane).length_m - o.lane_position_m)
@@ -356,7 +383,8 @@ void ObjectReader::Plausible(double lane_yaw_rate, bool counted, ObjectSnapshot*
   conditioned_ += changed && !counted ? 1 : 0;
 }
 
-std::optional<Leader> ObjectReader::LeaderOf(const std::string& id, double speed) {
+std::optional<Leader> ObjectReader::LeaderOf(const std::string& id, double speed,
+                                             double sumo_time_s) {
   if (!(speed > 0.1)) return std::nullopt;
   const std::optional<LeaderReport> ahead = traffic_->Leader(id, LeaderLookAhead(speed));
   if (!ahead) return std::nullopt;
@@ -364,7 +392,7 @@ std::optional<Leader> ObjectReader::LeaderOf(const std::string& id, double speed
   leader.id = ahead->id;
   leader.gap_m = ahead->gap_m;
   leader.speed_mps = ahead->speed_mps;
-  leader.accel_mps2 = ahead->accel_mps2;
+  leader.accel_mps2 = WindowAccel(ahead->id, ahead->accel_mps2, sumo_time_s);
   if (!std::isfinite(leader.gap_m) || !std::isfinite(leader.speed_mps) ||
       !std::isfinite(leader.accel_mps2))
     return std::nullopt;

@@ -2,6 +2,7 @@
 // Each object SUMO reported in a step becomes an ObjectSnapshot: its centre pose and math yaw
 // (plugin/sumo/sumo_conventions.h), its yaw rate (SUMO has no getter: the heading change since
 // the previous step, or with steps longer than kLongStepS the yaw rate of following its lane),
+// its acceleration (SUMO's, or its mean over SceneConfig::accel_window_s),
 // and for a vehicle on a lane its lanes from its own view (object_lanes.h), its stop line
 // (stop_lines.h), its leader (car_following.h: three SUMO questions per moving vehicle), its type
 // (road_users.h), the carriages of a long body (carriages.h), whether it is stopped or parked;
@@ -12,6 +13,7 @@
 // just past a junction the heading of the way behind the new lane, SceneConfig::way_heading);
 // values that are not numbers (NaN) are passed on: scene building leaves out what the estimator
 // cannot use.
+#include <deque>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -35,7 +37,10 @@ class ObjectReader {
   /** The snapshots of `objects` (same order), read at SUMO time `sumo_time_s`. */
   std::vector<ObjectSnapshot> Read(const std::vector<SumoObject>& objects, double sumo_time_s);
   /** A vehicle left the simulation or was teleported: its heading is no longer remembered. */
-  void Forget(const std::string& id) { last_yaw_.erase(id); }
+  void Forget(const std::string& id) {
+    last_yaw_.erase(id);
+    accel_reads_.erase(id);
+  }
   /** Object reads whose state was made plausible (a yaw rate or an acceleration no vehicle of
    *  its kind can have), so far. */
   long long conditioned() const { return conditioned_; }
@@ -43,9 +48,10 @@ class ObjectReader {
  private:
   ObjectSnapshot Vehicle(const SumoObject& o, double sumo_time_s);
   ObjectSnapshot Person(const SumoObject& o);
-  /** The vehicle ahead that its driver is expected to follow; nullopt when it stands still
-   *  itself, nothing is within LeaderLookAhead, or SUMO's values are not finite. */
-  std::optional<Leader> LeaderOf(const std::string& id, double speed);
+  /** The vehicle ahead that its driver is expected to follow, with its acceleration over the
+   *  window (WindowAccel); nullopt when it stands still itself, nothing is within
+   *  LeaderLookAhead, or SUMO's values are not finite. */
+  std::optional<Leader> LeaderOf(const std::string& id, double speed, double sumo_time_s);
   /** A parked vehicle beside its lane: its position is more than half a lane width off the
    *  lane's centre line (a parking area beside the road). */
   bool OffItsLane(const SumoObject& o);
@@ -89,6 +95,20 @@ class ObjectReader {
   double HeadingOf(const SumoObject& o, double angle_deg, double sumo_time_s, bool* held) const;
 
   std::unordered_map<std::string, LastHeading> last_yaw_;  ///< id -> its previous read
+  /** SUMO's acceleration of one read of a vehicle. */
+  struct AccelRead {
+    double time_s{0.0};
+    double accel_mps2{0.0};
+  };
+  /** Remembers SUMO's acceleration of each vehicle read at `sumo_time_s`, keeping its
+   *  consecutive reads within SceneConfig::accel_window_s (a read more than 1.5 steps after the
+   *  previous one starts afresh). */
+  void RememberAccels(const std::vector<SumoObject>& objects, double sumo_time_s);
+  /** A vehicle's acceleration over SceneConfig::accel_window_s: the mean of its remembered
+   *  reads, where it was read at `sumo_time_s`; else `sumo_accel`. */
+  double WindowAccel(const std::string& id, double sumo_accel, double sumo_time_s) const;
+  /** id -> its reads within the window, oldest first (only with accel_window_s > 0). */
+  std::unordered_map<std::string, std::deque<AccelRead>> accel_reads_;
   /** "previous edge\nlane" -> whether a link of that edge leads to the lane. */
   std::unordered_map<std::string, bool> reached_from_;
   long long conditioned_{0};

@@ -28,6 +28,13 @@ struct SceneConfig {
    *  speeds, headings, sizes and classes, lane geometry, signal states, turn signals): no
    *  routes, route ends, next edges or vType values (plugin/README.md). */
   bool observable_only{false};
+  /** --accel-window: a vehicle's acceleration is its speed change over this time, the mean of
+   *  SUMO's accelerations (each the last step's speed change) over its consecutive reads within
+   *  it; at steps as long as the window or longer, SUMO's of the last step. 0: SUMO's always.
+   *  At short steps SUMO's driver imperfection (sigma) changes a speed by up to +-0.45 m/s per
+   *  0.1 s step, so the last step's acceleration jumps between about +2.5 and -4.5 m/s^2 from
+   *  step to step (bench/RESULTS.md, twenty-second stop). */
+  double accel_window_s{0.0};
   /** A person on a walking area whose next crossing it may not enter now (red, or no priority
    *  while a vehicle approaches: WaitsAtCrossing) stays on the footway. Reads the person's next
    *  edge, which only the simulator knows (off with --observable-only, which does not read it,

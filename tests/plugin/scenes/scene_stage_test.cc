@@ -712,6 +712,68 @@ TEST(SceneStage, AnAccelerationBeyondTheTypesLimitsIsBoundedByThem) {
   EXPECT_EQ(s.ego.type.emergency_decel_mps2, 7.0);  // and the estimator gets the type
 }
 
+// SceneConfig::accel_window_s: SUMO's per-step accelerations, as its driver imperfection makes
+// them at 0.1 s steps, read at each step with `window_s`; the ego's, then the car ahead's.
+std::vector<double> AccelsRead(double step_s, double window_s, const std::vector<double>& sumo) {
+  FakeSumoWorld w(step_s);
+  w.AddEdge("E", 0, 0, 300, 0, 1);
+  w.AddVehicle("ego", 50, 0, 90, 10, "E_0", 50, {"E"});
+  SceneConfig config;
+  config.accel_window_s = window_s;
+  SceneStage stage(config, w.StepLength(), true, &w, &w);
+  std::vector<double> read;
+  for (std::size_t i = 0; i < sumo.size(); ++i) {
+    if (i > 0) w.Step();
+    w.Find("ego")->accel_mps2 = sumo[i];
+    read.push_back(stage.Run(Observe(w, {"ego"})).scenes.at(0).ego.state.accel_mps2);
+  }
+  return read;
+}
+
+TEST(SceneStage, AnAccelerationWindowReadsTheSpeedChangeOverItsTime) {
+  const std::vector<double> sumo{2.5, -4.5, 2.5, -4.5, 2.5, 2.5};
+  // 0.4 s at 0.1 s steps: the mean of the reads of now and the 3 steps before.
+  const std::vector<double> windowed = AccelsRead(0.1, 0.4, sumo);
+  ASSERT_EQ(windowed.size(), sumo.size());
+  EXPECT_NEAR(windowed[0], 2.5, 1e-12);  // one read so far
+  EXPECT_NEAR(windowed[1], -1.0, 1e-12);
+  EXPECT_NEAR(windowed[2], 0.5 / 3.0, 1e-12);
+  EXPECT_NEAR(windowed[3], -1.0, 1e-12);
+  EXPECT_NEAR(windowed[4], -1.0, 1e-12);  // the first read has left the window
+  EXPECT_NEAR(windowed[5], 0.75, 1e-12);
+  // Without a window, and at steps as long as the window, SUMO's of the last step.
+  EXPECT_EQ(AccelsRead(0.1, 0.0, sumo), sumo);
+  EXPECT_EQ(AccelsRead(0.5, 0.4, sumo), sumo);
+}
+
+TEST(SceneStage, AFollowerReadsItsLeadersAccelerationOverTheWindow) {
+  // The leader 4 m ahead at the follower's speed, SUMO's acceleration +2.5 for three 0.1 s
+  // steps and -4.5 in the last: over 0.4 s it speeds up (+0.75 m/s^2), so the follower has
+  // nothing to react to; from the last step alone it brakes to a stop, and so must the follower.
+  const auto expected = [](double window_s) {
+    FakeSumoWorld w(0.1);
+    w.AddEdge("E", 0, 0, 300, 0, 1);
+    w.AddVehicle("lead", 100, 0, 90, 8, "E_0", 100, {"E"});
+    w.AddVehicle("ego", 91, 0, 90, 8, "E_0", 91, {"E"});
+    SceneConfig config;
+    config.accel_window_s = window_s;
+    SceneStage stage(config, w.StepLength(), true, &w, &w);
+    std::optional<double> a;
+    bool first = true;
+    for (double sumo : {2.5, 2.5, 2.5, -4.5}) {
+      if (!first) w.Step();
+      first = false;
+      w.Find("lead")->accel_mps2 = sumo;
+      w.leaders["ego"] = LeaderReport{"lead", 4.0, 8.0, sumo};
+      a = stage.Run(Observe(w, {"ego"})).scenes.at(0).ego.state.expected_accel_mps2;
+    }
+    return a;
+  };
+  EXPECT_FALSE(expected(0.4).has_value());
+  ASSERT_TRUE(expected(0.0).has_value());
+  EXPECT_LT(*expected(0.0), -1.0);
+}
+
 TEST(SceneStage, WithAllVehiclesOnlyTheEgoClassesAreEstimated) {
   FakeSumoWorld w;
   w.AddEdge("E", 0, 0, 300, 0, 1);
