@@ -82,6 +82,9 @@ def parse_args(argv):
                     "8 runs; violations-full: seeds 5-9, 5 and 7 tuning, 20 runs), every vehicle an ego, "
                     "tuning and held-out "
                     "sets side by side; default variants: ours and observable")
+    ap.add_argument("--family-step", type=float, choices=network_family.STEPS_S,
+                    help="with --family: only the networks at this SUMO step length (s), e.g. "
+                    "0.1 for a change that acts at short steps only (default: both, 1 and 0.1)")
     ap.add_argument("--family-time-limit", type=int, default=3600,
                     help="seconds one family run may take before it is stopped (default 3600)")
     ap.add_argument("--report-only", action="store_true",
@@ -105,7 +108,7 @@ def run_family(a, chosen, info):
     with every vehicle an ego (closed-loop variants under --act brake), write family.* into
     OUT."""
     out = os.path.abspath(a.out)
-    nets = network_family.family(a.family)
+    nets = network_family.family(a.family, a.family_step)
     try:
         cfgs = [network_family.generate(n, os.path.join(out, "family_nets"), log) for n in nets]
     except (RuntimeError, OSError) as e:
@@ -130,7 +133,9 @@ def run_family(a, chosen, info):
     lines = [f"- {info['date']}, commit {info['commit']}, `{info['command']}`",
              f"- profile {a.family}: {len(nets)} networks "
              f"({sum(n.split == 'tuning' for n in nets)} tuning, "
-             f"{sum(n.split == 'held-out' for n in nets)} held-out); variants "
+             f"{sum(n.split == 'held-out' for n in nets)} held-out"
+             + (f", {a.family_step:g} s steps only" if a.family_step is not None else "")
+             + "); variants "
              f"{', '.join(v.name for v in chosen)}"]
     family_eval.write(out, rows, lines)
     info["networks"] = [{"name": n.name, "split": n.split} for n in nets]

@@ -86,12 +86,17 @@ class Network:
         return END_S[self.step_s]
 
 
-def family(profile="full"):
+def family(profile="full", step_s=None):
+    """The networks of a profile; with step_s only those at that SUMO step length."""
     if profile not in PROFILES:
         raise ValueError(f"network family: no profile {profile!r} (known: "
                          f"{', '.join(PROFILES)})")
+    if step_s is not None and step_s not in STEPS_S:
+        raise ValueError(f"network family: no step length {step_s:g} s (known: "
+                         f"{', '.join(f'{s:g}' for s in STEPS_S)})")
     kinds = VIOLATION_KINDS if profile.startswith("violations") else KINDS
-    return [Network(k, s, dt) for k in kinds for s in PROFILES[profile] for dt in STEPS_S]
+    steps = STEPS_S if step_s is None else (step_s,)
+    return [Network(k, s, dt) for k in kinds for s in PROFILES[profile] for dt in steps]
 
 
 def netgenerate_args(kind, seed):

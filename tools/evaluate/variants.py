@@ -119,6 +119,14 @@ VARIANTS = [
             "ours drawing the lanes ahead through a junction as the chord between the lanes, "
             "not along its internal lanes (--no-junction-shapes)",
             {"act": "warn", "no-junction-shapes": "true"}),
+    Variant("accel-window-0.3",
+            "ours reading each vehicle's acceleration as its speed change over 0.3 s, not the "
+            "last step's (--accel-window 0.3)",
+            {"act": "warn", "accel-window": "0.3"}),
+    Variant("accel-window-0.5",
+            "ours reading each vehicle's acceleration as its speed change over 0.5 s, not the "
+            "last step's (--accel-window 0.5)",
+            {"act": "warn", "accel-window": "0.5"}),
     Variant("horizon-3", "ours predicting 3 s ahead (--horizon 3) instead of the paper's 2 s",
             {"act": "warn", "horizon": "3"}),
     Variant("paper-literal", "the first implementation's scoring (ParamsPreset paper-literal)",

@@ -437,6 +437,11 @@ class NetworkFamilyTest(unittest.TestCase):
         self.assertEqual({n.split for n in quick}, {"tuning", "held-out"})
         with self.assertRaises(ValueError):
             network_family.family("huge")
+        short = network_family.family("quick", 0.1)  # --family-step 0.1
+        self.assertEqual(short, [n for n in quick if n.step_s == 0.1])
+        self.assertEqual(len(short), len(quick) // 2)
+        with self.assertRaises(ValueError):
+            network_family.family("quick", 0.5)
 
     def test_the_seed_draws_the_network_and_the_traffic(self):
         self.assertNotEqual(network_family.netgenerate_args("grid", 1),
