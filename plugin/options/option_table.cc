@@ -160,10 +160,11 @@ void OptionTable::Estimator(DriverOptions* o) {
       "range", Value(&o->observe.range_m),
       "vehicles and pedestrians within this distance of an ego are considered (m)")(
       "accel-window", Value(&o->scenes.accel_window_s),
-      "a vehicle's acceleration is its speed change over this time (s): the mean of SUMO's "
-      "per-step accelerations within it, which SUMO's driver imperfection makes jump from step "
-      "to step at short steps; 0 or a window no longer than SUMO's step: the last step's "
-      "(plugin/README.md, \"Acceleration\")")(
+      "experimental (ours, 0 = off by default: it halves the flicker of p at 0.1 s steps but "
+      "did not lower the held-out false alarms, bench/RESULTS.md): a vehicle's acceleration is "
+      "its speed change over this time (s), the mean of SUMO's per-step accelerations within "
+      "it, which SUMO's driver imperfection makes jump from step to step at short steps; a "
+      "window no longer than SUMO's step: the last step's (plugin/README.md, \"Acceleration\")")(
       "no-simd", po::bool_switch(&raw.no_simd),
       "cpu backend: the scalar fast path instead of SIMD lanes (the same pair matrix as the "
       "plain reference, bit for bit; SIMD differs at most in contacts within 1 mm)")(

@@ -33,7 +33,8 @@ struct SceneConfig {
    *  it; at steps as long as the window or longer, SUMO's of the last step. 0: SUMO's always.
    *  At short steps SUMO's driver imperfection (sigma) changes a speed by up to +-0.45 m/s per
    *  0.1 s step, so the last step's acceleration jumps between about +2.5 and -4.5 m/s^2 from
-   *  step to step (bench/RESULTS.md, twenty-second stop). */
+   *  step to step (bench/RESULTS.md, twenty-second stop). Off by default: 0.3 s lowered the
+   *  flicker of p but not the held-out networks' false alarms (twenty-third stop). */
   double accel_window_s{0.0};
   /** A person on a walking area whose next crossing it may not enter now (red, or no priority
    *  while a vehicle approaches: WaitsAtCrossing) stays on the footway. Reads the person's next
