@@ -147,6 +147,16 @@ def judged(run, eps_by_ego):
         con.close()
 
 
+def false_alarm_starts(run, eps_by_ego):
+    """[(ego, start_s)] of the episodes that nothing critical followed (as false_alarms)."""
+    con = result_views.open_run(run, eps_by_ego, GRACE_S)
+    try:
+        return list(con.execute(
+            "SELECT ego, start_s FROM warning_outcomes WHERE outcome IS NULL ORDER BY start_s"))
+    finally:
+        con.close()
+
+
 def outcomes(run, eps_by_ego):
     """{outcome: number of episodes} (None: false alarms)."""
     return judged(run, eps_by_ego)[0]

@@ -49,6 +49,7 @@ class FamilyRow:
     warnings: int = 0
     false_alarms: int = 0  # the unjudged ones included
     unjudged: int = 0  # false alarms whose window runs past the run's last time
+    junction_false_alarms: int = 0  # false alarms opened with the ego in a junction
     judged_vehicle_hours: float = 0.0  # up to the run's last time minus the grace
     rewarnings: int = 0
     dp_sign_changes: int = 0  # summed over the episodes (episode_flicker)
@@ -88,8 +89,9 @@ class FamilyRow:
         d = {k: getattr(self, k) for k in ("variant", "network", "split", "kind", "step_s",
                                            "status", "vehicle_hours", "egos", "warnings",
                                            "false_alarms", "unjudged",
-                                           "judged_vehicle_hours", "rewarnings", "collisions",
-                                           "warned_collisions", "actions")}
+                                           "junction_false_alarms", "judged_vehicle_hours",
+                                           "rewarnings", "collisions", "warned_collisions",
+                                           "actions")}
         d.update(warnings_per_vehicle_hour=self.warnings_per_vehicle_hour,
                  false_alarms_per_vehicle_hour=self.false_alarms_per_vehicle_hour,
                  judged_false_alarms_per_vehicle_hour=self.judged_false_alarms_per_vehicle_hour,
@@ -140,6 +142,15 @@ def episode_flicker(run):
     return out
 
 
+def junction_false_alarms(run, eps_by_ego):
+    """How many false alarms opened while their ego was on a junction's internal lane (its
+    SUMO edge, as the warnings table records it, begins with ':'); 0 where the edge is not
+    recorded."""
+    edges = {(w.ego, round(w.start_s, 6)): w.edge for w in run.warnings}
+    return sum(1 for ego, start in city_false_alarms.false_alarm_starts(run, eps_by_ego)
+               if (edges.get((ego, round(start, 6))) or "").startswith(":"))
+
+
 def collision_anticipation(run):
     """[anticipation_s or None] for each of SUMO's collisions in the run (the view
     collision_anticipation over the driver's warnings)."""
@@ -173,6 +184,7 @@ def judge(variant, net, run):
     if eps:
         got, _, row.unjudged = city_false_alarms.judged(run, eps)
         row.false_alarms = got.get(None, 0)
+        row.junction_false_alarms = junction_false_alarms(run, eps)
     row.rewarnings = rewarnings(run.warnings)
     row.dp_sign_changes = sum(episode_flicker(run))
     ant = collision_anticipation(run)
@@ -204,6 +216,7 @@ def sets(rows, by_step=False):
             s.warnings += r.warnings
             s.false_alarms += r.false_alarms
             s.unjudged += r.unjudged
+            s.junction_false_alarms += r.junction_false_alarms
             s.judged_vehicle_hours += r.judged_vehicle_hours
             s.rewarnings += r.rewarnings
             s.dp_sign_changes += r.dp_sign_changes
@@ -218,14 +231,14 @@ def sets(rows, by_step=False):
 COLUMNS = ["variant", "split", "network", "step_s", "status", "vehicle_hours", "egos",
            "warnings", "warnings_per_vehicle_hour", "false_alarms",
            "false_alarms_per_vehicle_hour", "unjudged", "judged_vehicle_hours",
-           "judged_false_alarms_per_vehicle_hour", "rewarnings", "rewarnings_per_vehicle_hour",
-           "dp_sign_changes_per_warning", "collisions", "warned_collisions",
-           "median_anticipation_s", "actions"]
+           "judged_false_alarms_per_vehicle_hour", "junction_false_alarms", "rewarnings",
+           "rewarnings_per_vehicle_hour", "dp_sign_changes_per_warning", "collisions",
+           "warned_collisions", "median_anticipation_s", "actions"]
 HEADERS = ["variant", "set", "network", "step (s)", "status", "vehicle-hours", "egos",
            "warnings", "warnings / veh-h", "false alarms", "false alarms / veh-h", "unjudged",
-           "judged veh-h", "judged false alarms / veh-h", "re-warnings",
-           "re-warnings / veh-h", "dp sign changes / warning", "collisions", "warned collisions",
-           "median anticipation (s)", "closed-loop actions"]
+           "judged veh-h", "judged false alarms / veh-h", "false alarms in a junction",
+           "re-warnings", "re-warnings / veh-h", "dp sign changes / warning", "collisions",
+           "warned collisions", "median anticipation (s)", "closed-loop actions"]
 SET_COLUMNS = [c for c in COLUMNS if c != "step_s"]
 SET_HEADERS = [h for c, h in zip(COLUMNS, HEADERS) if c != "step_s"]
 
@@ -251,7 +264,8 @@ def write(out, rows, info_lines):
         "earlier figures stay comparable; 'judged false alarms / veh-h' leaves them out and "
         "divides by the judged vehicle-hours, the ego steps at or before that last time minus "
         f"{city_false_alarms.GRACE_S:g} s. An episode followed by a collision, overlap or hard "
-        "braking is judged by it even when its window runs past the end. "
+        "braking is judged by it even when its window runs past the end. False alarms in a "
+        "junction: those that opened with the ego on a junction's internal lane. "
         f"A re-warning: an episode opening within {REWARN_GAP_S:g} s of the end of its ego's "
         "previous one. dp sign changes / warning: how often p turned (by at least "
         f"{FLICKER_MIN_DP:g} a step) over an episode and the {APPROACH_S:g} s before it: 1 for a "

@@ -15,6 +15,7 @@ class Warning:
     start_s: float
     end_s: float  # None while open at the end of the run
     peak_p: float
+    edge: str = None  # the ego's SUMO edge where the episode opened (":..." in a junction)
 
 
 @dataclass
@@ -127,11 +128,12 @@ def _read_tables(con, runs, key):
             for c, v in zip(present, row[3:]):
                 s[c].append(v)
     if "warnings" in tables:
-        for index, ego, start, end, peak in con.execute(
-                f"select {key}, ego, start_s, end_s, peak_p from warnings "
+        edge = "edge" if "edge" in _columns(con, "warnings") else "NULL"
+        for index, ego, start, end, peak, where in con.execute(
+                f"select {key}, ego, start_s, end_s, peak_p, {edge} from warnings "
                 f"order by {by}start_s"):
             if index in runs:
-                runs[index].warnings.append(Warning(ego, start, end, peak))
+                runs[index].warnings.append(Warning(ego, start, end, peak, where))
     if "collisions" in tables:
         for index, t, collider, victim, vc, vv, ego in con.execute(
                 f"select {key}, time_s, collider, victim, collider_speed_mps, "

@@ -550,6 +550,25 @@ class FamilyEvalTest(unittest.TestCase):
             self.assertIn("| ours | tuning | 1 of 1 networks |", text)
             self.assertTrue(os.path.exists(os.path.join(d, "family.html")))
 
+    def test_false_alarms_in_a_junction_are_those_opened_on_an_internal_lane(self):
+        # Three episodes, none followed by anything: two false alarms opened on a junction's
+        # internal lane, one on a normal edge; a warned collision on an internal lane is no
+        # false alarm. Catches a count of warnings instead of false alarms, an edge matched to
+        # another episode, a test for ':' anywhere in the ID, and a set sum that drops it.
+        run = make_run("grid1_0.1s", "a", [0.0] * 3000)
+        run.warnings = [run_data.Warning("a", 10.0, 10.5, 0.9, ":B1_3_0"),
+                        run_data.Warning("a", 40.0, 40.5, 0.9, "A0B0"),
+                        run_data.Warning("a", 80.0, 80.5, 0.9, ":C2_1_0"),
+                        run_data.Warning("a", 120.0, 121.0, 0.9, ":D0_2_0")]
+        run.collisions = [run_data.Collision(121.0, "a", "b", 5.0, 0.0, True)]
+        row = family_eval.judge("ours", network_family.Network("grid", 1, 0.1), run)
+        self.assertEqual((row.false_alarms, row.junction_false_alarms), (3, 2))
+        other = make_run("grid1_1s", "a", [0.0] * 100)
+        other.warnings = [run_data.Warning("a", 5.0, 5.5, 0.9, "A:B")]  # not a junction's
+        rows = [row, family_eval.judge("ours", network_family.Network("grid", 1, 1.0), other)]
+        self.assertEqual(rows[1].junction_false_alarms, 0)
+        self.assertEqual(family_eval.sets(rows)[0].junction_false_alarms, 2)
+
     def test_closed_loop_actions_are_counted_per_network_and_summed_per_set(self):
         # The closed-loop variant's rows carry the driver's summary count of actions; the set
         # row sums them and family.md has the column. Catches a count that is dropped, taken
