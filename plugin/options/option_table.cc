@@ -160,7 +160,7 @@ void OptionTable::Estimator(DriverOptions* o) {
       "range", Value(&o->observe.range_m),
       "vehicles and pedestrians within this distance of an ego are considered (m)")(
       "accel-window", Value(&o->scenes.accel_window_s),
-      "experimental (ours, 0 = off by default: it halves the flicker of p at 0.1 s steps but "
+      "experimental (ours, 0 = off by default: it lowers the flicker of p at 0.1 s steps but "
       "did not lower the held-out false alarms, bench/RESULTS.md): a vehicle's acceleration is "
       "its speed change over this time (s), the mean of SUMO's per-step accelerations within "
       "it, which SUMO's driver imperfection makes jump from step to step at short steps; a "
