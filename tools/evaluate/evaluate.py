@@ -79,7 +79,9 @@ def parse_args(argv):
                     "networks (tools/evaluate/network_family.py; quick: seeds 1 and 3, 12 runs "
                     "per variant; full: seeds 1-4; violations: priority-junction grid and rand nets "
                     "where a seeded 30 %% of cars and trucks ignore right of way, seeds 5 and 6, "
-                    "8 runs; violations-full: seeds 5-9, 5 and 7 tuning, 20 runs), every vehicle an ego, "
+                    "8 runs; violations-full: seeds 5-9, 5 and 7 tuning, 20 runs; sublane: "
+                    "the sublane grids and spider of bench/RESULTS.md, 0.1 s steps, g1 tuning, "
+                    "h4 and sp held-out, 3 runs of 10-25 minutes), every vehicle an ego, "
                     "tuning and held-out "
                     "sets side by side; default variants: ours and observable")
     ap.add_argument("--family-step", type=float, choices=network_family.STEPS_S,
@@ -109,6 +111,10 @@ def run_family(a, chosen, info):
     OUT."""
     out = os.path.abspath(a.out)
     nets = network_family.family(a.family, a.family_step)
+    if not nets:
+        log(f"evaluate: --family {a.family} has no networks at {a.family_step:g} s steps: "
+            "leave out --family-step or choose another")
+        return 2
     try:
         cfgs = [network_family.generate(n, os.path.join(out, "family_nets"), log) for n in nets]
     except (RuntimeError, OSError) as e:

@@ -24,6 +24,15 @@ same networks, because seed 6 held only one collision, too thin a judge. Seed 7 
 tuning set, seeds 8 and 9 the held-out set; the profile `violations-full` runs seeds 5 to 9,
 `violations` still seeds 5 and 6.
 
+Sublane grids and a spider (added on 2026-12-07 to the repository; written down at the
+sixteenth and seventeenth stops, 2026-12-06, before any rule was tuned on the held-out ones, and
+used since from files outside it): the profile `sublane` runs, at 0.1 s steps with SUMO's
+sublane model (lateral resolution 0.8 m), a 4x4 grid of three-lane streets with traffic lights
+and 300 cars (randomTrips seed 1: the tuning net `sgrid1`, "g1" in bench/RESULTS.md; seed 4:
+the held-out `sgrid4`, "h4") and a 6-arm spider of two-lane streets with cars and bicycles (the
+held-out `sspider31`, "sp"). Their configurations are those of the earlier runs (collisions in
+junctions not checked), so that their figures stay comparable.
+
 Generation is deterministic: netgenerate and randomTrips with fixed seeds; a network folder is
 rebuilt when the commands that made it change (FAMILY_COMMANDS.txt in it)."""
 
@@ -40,7 +49,7 @@ SEEDS = (1, 2, 3, 4)
 TUNING_SEEDS = (1, 2)
 STEPS_S = (1.0, 0.1)
 PROFILES = {"quick": (1, 3), "full": SEEDS, "violations": (5, 6),
-            "violations-full": (5, 6, 7, 8, 9)}
+            "violations-full": (5, 6, 7, 8, 9), "sublane": ()}  # sublane: SUBLANE_NETS
 # The right-of-way violation networks: their kinds, their tuning seed, the share of cars and
 # trucks that ignore right of way, and the speed mode that makes them (SUMO's bits: all but 8,
 # "regard right of way at intersections").
@@ -54,6 +63,26 @@ END_S = {1.0: 200.0, 0.1: 60.0}
 # randomTrips periods (s between departures; a lower one is more traffic), per kind of road user.
 PERIODS_S = {"car": 3.0, "truck": 15.0, "bike": 10.0, "ped": 6.0}
 VIOLATION_PERIODS_S = {"car": 1.0, "truck": 8.0, "bike": 10.0, "ped": 6.0}
+# The sublane profile: per kind its netgenerate options; per (kind, seed) its split, simulated
+# seconds and randomTrips traffic {file stem: options}; 0.1 s steps only.
+SUBLANE_KINDS = ("sgrid", "sspider")
+SUBLANE_STEP_S = 0.1
+SUBLANE_NETGENERATE = {
+    "sgrid": ["--grid", "--grid.number", "4", "--grid.length", "200", "--default.lanenumber",
+              "3", "--tls.guess"],
+    "sspider": ["--spider", "--spider.arm-number", "6", "--spider.circle-number", "4",
+                "--spider.space-radius", "80", "--default.lanenumber", "2", "--tls.guess"],
+}
+_SGRID_CARS = ["--end", "120", "--period", "0.4", "--fringe-factor", "5", "--validate"]
+SUBLANE_NETS = {
+    ("sgrid", 1): ("tuning", 150.0, {"cars": _SGRID_CARS + ["--seed", "1"]}),
+    ("sgrid", 4): ("held-out", 150.0, {"cars": _SGRID_CARS + ["--seed", "4"]}),
+    ("sspider", 31): ("held-out", 130.0, {
+        "cars": ["--end", "100", "--period", "0.5", "--seed", "31", "--validate"],
+        "bikes": ["--end", "100", "--period", "5", "--seed", "32", "--prefix", "bike",
+                  "--vehicle-class", "bicycle", "--validate"]}),
+}
+SUBLANE_LATERAL_RESOLUTION_M = 0.8
 
 
 @dataclass(frozen=True)
@@ -63,12 +92,19 @@ class Network:
     step_s: float
 
     @property
+    def sublane(self):
+        """Whether it is a net of the `sublane` profile."""
+        return self.kind in SUBLANE_KINDS
+
+    @property
     def violations(self):
         """Whether some of its drivers ignore right of way (the `violations` profile)."""
         return self.kind in VIOLATION_KINDS
 
     @property
     def split(self):
+        if self.sublane:
+            return SUBLANE_NETS[(self.kind, self.seed)][0]
         tuning = VIOLATION_TUNING_SEEDS if self.violations else TUNING_SEEDS
         return "tuning" if self.seed in tuning else "held-out"
 
@@ -83,7 +119,7 @@ class Network:
 
     @property
     def end_s(self):
-        return END_S[self.step_s]
+        return SUBLANE_NETS[(self.kind, self.seed)][1] if self.sublane else END_S[self.step_s]
 
 
 def family(profile="full", step_s=None):
@@ -94,8 +130,11 @@ def family(profile="full", step_s=None):
     if step_s is not None and step_s not in STEPS_S:
         raise ValueError(f"network family: no step length {step_s:g} s (known: "
                          f"{', '.join(f'{s:g}' for s in STEPS_S)})")
-    kinds = VIOLATION_KINDS if profile.startswith("violations") else KINDS
     steps = STEPS_S if step_s is None else (step_s,)
+    if profile == "sublane":
+        return [Network(k, s, SUBLANE_STEP_S) for (k, s) in SUBLANE_NETS
+                if SUBLANE_STEP_S in steps]
+    kinds = VIOLATION_KINDS if profile.startswith("violations") else KINDS
     return [Network(k, s, dt) for k in kinds for s in PROFILES[profile] for dt in steps]
 
 
@@ -145,7 +184,10 @@ def traffic_args(seed, end_s, periods=PERIODS_S):
 
 
 def net_traffic_args(net, end_s):
-    """traffic_args for `net`: denser cars and trucks on the violation networks."""
+    """traffic_args for `net`: denser cars and trucks on the violation networks; a sublane net's
+    own (SUBLANE_NETS)."""
+    if net.sublane:
+        return SUBLANE_NETS[(net.kind, net.seed)][2]
     return traffic_args(net.seed, end_s, VIOLATION_PERIODS_S if net.violations else PERIODS_S)
 
 
@@ -172,9 +214,12 @@ def scenario_cfg_text(net, ids):
 
 def sumocfg_text(net, route_files):
     """A plain SUMO configuration: the network, the routes, the step length and end; collisions
-    checked in junctions too (SUMO's default checks lanes only), everything else SUMO's
-    defaults."""
+    checked in junctions too (SUMO's default checks lanes only), or for a sublane net SUMO's
+    sublane model instead; everything else SUMO's defaults."""
     routes = ",".join(route_files)
+    # A sublane net as it was first run: SUMO's sublane model, collisions on lanes only.
+    processing = (f'<lateral-resolution value="{SUBLANE_LATERAL_RESOLUTION_M:g}"/>'
+                  if net.sublane else '<collision.check-junctions value="true"/>')
     return f"""<?xml version="1.0" encoding="UTF-8"?>
 <!-- Written by tools/evaluate/network_family.py ({net.name}, {net.split} set). -->
 <configuration>
@@ -188,7 +233,7 @@ def sumocfg_text(net, route_files):
         <step-length value="{net.step_s:g}"/>
     </time>
     <processing>
-        <collision.check-junctions value="true"/>
+        {processing}
     </processing>
     <report>
         <no-step-log value="true"/>
@@ -209,7 +254,8 @@ def commands(net, folder):
     """The commands that make one network's folder, in order (argument lists)."""
     home = _sumo_home()
     net_file = os.path.join(folder, f"{net.net_name}.net.xml")
-    out = [["netgenerate"] + netgenerate_args(net.kind, net.seed) + ["-o", net_file]]
+    gen = SUBLANE_NETGENERATE[net.kind] if net.sublane else netgenerate_args(net.kind, net.seed)
+    out = [["netgenerate"] + gen + ["-o", net_file]]
     for stem, args in net_traffic_args(net, END_S[max(STEPS_S)]).items():
         routes = os.path.join(folder, f"{stem}.rou.xml")
         trips = os.path.join(folder, f"{stem}.trips.xml")

@@ -443,6 +443,25 @@ class NetworkFamilyTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             network_family.family("quick", 0.5)
 
+    def test_the_sublane_profile_is_the_earlier_sublane_protocol(self):
+        # g1 (tuning), h4 and sp (held-out) of bench/RESULTS.md, at 0.1 s steps only, with
+        # SUMO's sublane model and their own traffic. Catches a net in the wrong set, a 1 s
+        # run, the family's default traffic or junction checks in their configuration.
+        nets = network_family.family("sublane")
+        self.assertEqual([(n.name, n.split, n.end_s) for n in nets],
+                         [("sgrid1_0.1s", "tuning", 150.0), ("sgrid4_0.1s", "held-out", 150.0),
+                          ("sspider31_0.1s", "held-out", 130.0)])
+        self.assertEqual(network_family.family("sublane", 0.1), nets)
+        self.assertEqual(network_family.family("sublane", 1.0), [])
+        cfg = network_family.sumocfg_text(nets[1], ["cars.rou.xml"])
+        self.assertIn('<lateral-resolution value="0.8"/>', cfg)
+        self.assertNotIn("collision.check-junctions", cfg)
+        self.assertIn("collision.check-junctions",
+                      network_family.sumocfg_text(network_family.Network("grid", 1, 0.1), []))
+        self.assertEqual(list(network_family.net_traffic_args(nets[2], 130.0)), ["cars", "bikes"])
+        self.assertIn("4", network_family.net_traffic_args(nets[1], 150.0)["cars"])
+        self.assertFalse(any(n.sublane for n in network_family.family("full")))
+
     def test_the_seed_draws_the_network_and_the_traffic(self):
         self.assertNotEqual(network_family.netgenerate_args("grid", 1),
                             network_family.netgenerate_args("grid", 3))
