@@ -107,6 +107,7 @@ void ObjectReader::RememberAccels(const std::vector<SumoObject>& objects, double
 
 double ObjectReader::WindowAccel(const std::string& id, double sumo_accel,
                                  double sumo_time_s) const {
+  if (!(config_.accel_window_s > 0.0)) return sumo_accel;  // off: no lookup per read
   const auto it = accel_reads_.find(id);
   if (it == accel_reads_.end() || it->second.empty() || it->second.back().time_s != sumo_time_s)
     return sumo_accel;
@@ -248,7 +249,7 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   if (s.parked) s.off_road = s.lane.empty() || OffItsLane(o);
   if (s.lane.empty()) return s;
   s.edge = network_->Lane(s.lane).edge;
-  s.leader = LeaderOf(o.id, s.state.speed_mps, sumo_time_s);  // expected_accel_mps2: ExpectCarFollowing
+  s.leader = LeaderOf(o.id, s.state.speed_mps, sumo_time_s);  // for ExpectCarFollowing
   // SUMO's leader is looked for along the route: seen, only the one ahead in its own lane.
   if (config_.observable_only && s.leader &&
       s.leader->gap_m > network_->Lane(o.lane).length_m - o.lane_position_m)
