@@ -12,6 +12,8 @@ namespace criticality::core {
 constexpr int kMaxSampleInstants = 4;
 constexpr int kMaxLateralSamples = 16;
 constexpr int kMaxProfiles = 32;
+/** criticality::kMaxWayPoints (scene.h), the points of a body's way. */
+constexpr int kMaxWayPointsCore = 48;
 
 enum class MotionModelKind : int {
   kTwoTrack = 0,    ///< the ego
@@ -68,6 +70,19 @@ struct HypothesisSet {
   bool on_track{false};
   double track_x0{0.0};
   double track_offset{0.0};
+  /** Bound to its way (Vehicle::way, Params::bodies_on_way): the middle of its front moves
+   *  along the polyline way_x/way_y (local frame, way_s its arc lengths) from track_x0 by the
+   *  distance its speed covers, the middle of its back way_body behind it on the way; its box
+   *  points from back to front with its centre half its length behind the front, then moved
+   *  by (way_dx, way_dy, way_dyaw) in that pose's frame (what puts it on its measured pose at
+   *  the start). Beyond either end the way goes straight on. No steering, no sideslip. */
+  bool on_way{false};
+  int n_way{0};
+  double way_x[kMaxWayPointsCore]{};
+  double way_y[kMaxWayPointsCore]{};
+  double way_s[kMaxWayPointsCore]{};
+  double way_body{0.0};
+  double way_dx{0.0}, way_dy{0.0}, way_dyaw{0.0};
   /** The vehicle leaves the scene once its centre has travelled this far along its way
    *  (Params::route_end_leaves): its poses from then on lie far from everything (kGoneX), so
    *  they collide with nothing. +inf: it stays. */

@@ -125,7 +125,7 @@ CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h,
     st.held_c = std::cos(h.X_WL.yaw);
     st.held_s = std::sin(h.X_WL.yaw);
   }
-  if (h.body_on_path && !h.on_track) {  // the measured box is the chord: its path lies outside
+  if (h.body_on_path && !h.on_track && !h.on_way) {  // the measured box is the chord
     const double e = PathSagitta(h, BodyCurvature(h.yaw_rate0, h.v0));
     st.s.x = e * std::sin(h.beta0);
     st.s.y = -e * std::cos(h.beta0);
@@ -151,6 +151,74 @@ CRIT_HD void TrackStep(const HypothesisSet& h, double v_dot, double tau, Simulat
   const double yaw = std::atan(m) + track.rot;
   s.x = track.cos_rot * xr - track.sin_rot * yr;
   s.y = track.sin_rot * xr + track.cos_rot * yr;
+  s.yaw_rate = (yaw - s.yaw) / tau;
+  s.yaw = yaw;
+  s.beta = 0.0;
+  s.v = s.v + v_dot * tau;
+  s.ax = v_dot;
+  s.ay = s.v * s.yaw_rate;
+}
+
+/** The point at arc length `at` along a body's way (HypothesisSet::on_way), straight on
+ *  along its first or last piece beyond either end; (*dx, *dy) that piece's unit direction. */
+CRIT_HD void PointOnWay(const HypothesisSet& h, double at, double* x, double* y, double* dx,
+                        double* dy) {
+  const int last = (h.n_way < kMaxWayPointsCore ? h.n_way : kMaxWayPointsCore) - 1;
+  int lo = 0, hi = last;  // the piece [k, k + 1] holding `at`: way_s[lo] <= at < way_s[hi]
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    if (h.way_s[mid] <= at) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  const double len = h.way_s[hi] - h.way_s[lo];
+  *dx = (h.way_x[hi] - h.way_x[lo]) / len;
+  *dy = (h.way_y[hi] - h.way_y[lo]) / len;
+  const double u = at - h.way_s[lo];
+  *x = h.way_x[lo] + *dx * u;
+  *y = h.way_y[lo] + *dy * u;
+}
+
+/** The pose (local frame) of a body whose front is at arc length `front` on its way, as the
+ *  simulation places it: front and back on the way, heading from back to front, centre half
+ *  its length behind the front; `moved`: then moved by (way_dx, way_dy, way_dyaw). */
+CRIT_HD void WayPose(const HypothesisSet& h, double front, bool moved, double* x, double* y,
+                     double* yaw) {
+  double fx, fy, bx, by, dx, dy;
+  PointOnWay(h, front, &fx, &fy, &dx, &dy);
+  PointOnWay(h, front - h.way_body, &bx, &by, &dx, &dy);
+  double ux = fx - bx, uy = fy - by;
+  const double chord = std::sqrt(ux * ux + uy * uy);
+  if (chord > 1e-9) {
+    ux /= chord;
+    uy /= chord;
+  } else {  // a way that folds back on itself: the back's piece
+    ux = dx;
+    uy = dy;
+  }
+  const double cx = fx - h.half_length * ux, cy = fy - h.half_length * uy;
+  *yaw = std::atan2(uy, ux);
+  if (!moved) {
+    *x = cx;
+    *y = cy;
+    return;
+  }
+  *x = cx + ux * h.way_dx - uy * h.way_dy;
+  *y = cy + uy * h.way_dx + ux * h.way_dy;
+  *yaw += h.way_dyaw;
+}
+
+/** One step of a body bound to its way (HypothesisSet::on_way): its speed changes by v_dot,
+ *  its front moves along the way by the distance that Euler step covers (as TrackStep), and
+ *  its pose follows (WayPose; the yaw unwrapped from the last step's). */
+CRIT_HD void WayStep(const HypothesisSet& h, double v_dot, double tau, SimulationState* st) {
+  MotionState& s = st->s;
+  st->track_x += s.v * tau + 0.5 * s.ax * tau * tau;
+  double yaw;
+  WayPose(h, st->track_x, true, &s.x, &s.y, &yaw);
+  yaw = s.yaw + WrapAngle(yaw - s.yaw);
   s.yaw_rate = (yaw - s.yaw) / tau;
   s.yaw = yaw;
   s.beta = 0.0;
@@ -207,10 +275,20 @@ CRIT_HD void StorePose(const HypothesisSet& h, const StepContext& c, const Simul
     *y = 0.0;
   } else {
     double px = s.x, py = s.y;
+    if (h.on_way) {
+      // Along the way itself: where the simulator's update puts the front.
+      double yaw_lead = 0.0;
+      if (h.position_lead > 0.0)
+        WayPose(h, st.track_x + (s.v - h.v0) * h.position_lead, true, &px, &py, &yaw_lead);
+      *x = h.X_WL.x + c.c0 * px - c.s0 * py;
+      *y = h.X_WL.y + c.s0 * px + c.c0 * py;
+      *yaw = h.X_WL.yaw + (h.position_lead > 0.0 ? s.yaw + WrapAngle(yaw_lead - s.yaw) : s.yaw);
+      return;
+    }
     if (h.position_lead > 0.0) {
       ShiftAlongPath(h.position_lead, s.v, h.v0, BodyCurvature(s.yaw_rate, s.v), cx, cy, &px, &py);
     }
-    if (h.body_on_path && !h.on_track) {
+    if (h.body_on_path && !h.on_track && !h.on_way) {
       const double e = PathSagitta(h, BodyCurvature(s.yaw_rate, s.v));
       px -= cy * e;
       py += cx * e;
@@ -251,7 +329,7 @@ CRIT_HD void VehicleStep(const HypothesisSet& h, const SimulationConfig& cfg, in
   // Trig of yaw and sideslip once per step; the course by the angle-sum identities.
   double cb = std::cos(s.beta), sb = std::sin(s.beta);
   const double cy = std::cos(s.yaw), sy = std::sin(s.yaw);
-  if (h.on_track) {
+  if (h.on_track || h.on_way) {
     double a = RampedValue(t, h.profile_start, target, h.latency, h.rate);
     if (h.model == MotionModelKind::kTwoTrack)  // a force demand or a slip: in m/s^2
       a = mu_g * (h.force_profiles ? a : LongitudinalForceFactor(a));
@@ -259,7 +337,11 @@ CRIT_HD void VehicleStep(const HypothesisSet& h, const SimulationConfig& cfg, in
     if (h.vehicle.friction_limited) a = Clamp(a, -mu_g, mu_g);
     a = NonReversingAccel(s.v, TopSpeedAccel(s.v, a, tau, h.top_speed), tau);
     st->steer = 0.0;
-    TrackStep(h, a, tau, st);
+    if (h.on_way) {
+      WayStep(h, a, tau, st);
+    } else {
+      TrackStep(h, a, tau, st);
+    }
   } else {
     // Lateral reaction latency: until then the vehicle follows its reference path; its
     // hypothesis' path section after it.

@@ -696,7 +696,8 @@ HWY_EXPORT(CosSinImpl);
 HWY_EXPORT(TargetImpl);
 
 bool SiblingStepsApply(const core::HypothesisSet& h, const core::SimulationConfig& cfg) {
-  return h.model != core::MotionModelKind::kPedestrian && !h.on_track && cfg.controller.feedback &&
+  return h.model != core::MotionModelKind::kPedestrian && !h.on_track && !h.on_way &&
+         cfg.controller.feedback &&
          h.n_lateral <= core::kMaxLateralSamples &&
          (h.combine_sections || h.n_paths <= core::kMaxLateralSamples);
 }

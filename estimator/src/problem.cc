@@ -11,6 +11,7 @@
 #include "core/pedestrian_model.h"
 #include "core/profiles.h"
 #include "core/scoring.h"
+#include "core/trajectory_generation.h"
 #include "core/two_track.h"
 #include "criticality/errors.h"
 #include "criticality/vehicle_class.h"
@@ -199,6 +200,42 @@ void PutOnTrack(core::HypothesisSet* h) {
   h->on_track = true;
   h->track_x0 = foot;
   h->track_offset = (-(xr - foot) * mf + (yr - c.Eval(foot))) / std::sqrt(1.0 + mf * mf);
+}
+
+// Binds a vehicle to its way (Params::bodies_on_way, after SetPaths gave it its one path and
+// SetPose its box) where the way puts it within kWayMaxShiftM and kWayMaxTurnRad of its
+// measured pose (a way that does not pass it is not its way): its pose is then the way's,
+// moved by that difference at every step. Returns whether it is bound.
+constexpr double kWayMaxShiftM = 1.0;
+constexpr double kWayMaxTurnRad = 0.35;
+bool PutOnWay(const Way& way, core::HypothesisSet* h) {
+  const int n = static_cast<int>(std::min<size_t>(way.points.size(), core::kMaxWayPointsCore));
+  double at = 0.0;
+  for (int k = 0; k < n; ++k) {
+    if (k > 0) {
+      at += std::hypot(way.points[k].x - way.points[k - 1].x,
+                       way.points[k].y - way.points[k - 1].y);
+    }
+    h->way_x[k] = way.points[k].x;
+    h->way_y[k] = way.points[k].y;
+    h->way_s[k] = at;
+  }
+  h->n_way = n;
+  h->way_body = way.front_m - way.back_m;
+  double x, y, yaw;
+  core::WayPose(*h, way.front_m, false, &x, &y, &yaw);
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  const double dx = -c * x - s * y, dy = s * x - c * y;
+  if (std::hypot(dx, dy) > kWayMaxShiftM || std::fabs(yaw) > kWayMaxTurnRad) {
+    h->n_way = 0;
+    return false;
+  }
+  h->on_way = true;
+  h->track_x0 = way.front_m;
+  h->way_dx = dx;
+  h->way_dy = dy;
+  h->way_dyaw = -yaw;
+  return true;
 }
 
 // Pose and motion state; for vehicles after h->vehicle is set.
@@ -831,10 +868,14 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
         params, a_ref, ProfileStartAccel(v.state, stop, params), RangeOf(v.type, params), &h,
         &accel, nullptr, stop ? &*stop : nullptr, &stop_profile);
     const bool track = TrackBound(v.type, params);
-    if (track) h.steer_latency = 0.0;
+    // On its way (Params::bodies_on_way) where the way passes it; one path, as on a track.
+    core::HypothesisSet probe = h;
+    const bool on_way = !track && params.bodies_on_way && v.way && PutOnWay(*v.way, &probe);
+    if (track || on_way) h.steer_latency = 0.0;
     const std::vector<PathScore> paths =
-        SetPaths(fitted, params, /*combine=*/false, a_ref, &h, nullptr, track);
+        SetPaths(fitted, params, /*combine=*/false, a_ref, &h, nullptr, track || on_way);
     if (track) PutOnTrack(&h);
+    if (on_way) PutOnWay(*v.way, &h);
     AppendProbabilities(profiles, paths, params, &pb.co_probability);
     if (stop_profile >= 0) {
       // A mixture: complying (every hypothesis scored against the stopping profile as the
@@ -879,7 +920,10 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
       // every hypothesis.
       const bool same_lanes = car_fitted.left.has_value() == fitted.left.has_value() &&
                               car_fitted.right.has_value() == fitted.right.has_value();
-      SetPaths(car_fitted, params, /*combine=*/false, a_ref, &c, nullptr, track || !same_lanes);
+      c.on_way = false;  // its own lane (the vehicle's way is the vehicle's)
+      c.n_way = 0;
+      SetPaths(car_fitted, params, /*combine=*/false, a_ref, &c, nullptr,
+               track || on_way || !same_lanes);
       if (track) PutOnTrack(&c);  // its own track, replacing the copy of the vehicle's
       carriage_sets.push_back(c);
       pb.carriage_object.push_back(static_cast<int>(i));

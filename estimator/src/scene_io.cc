@@ -161,6 +161,11 @@ void WriteScene(std::ostream& out, const Scene& scene) {
     if (v.lanes) WriteLanes(out, *v.lanes);
     WriteStop(out, v.stop_line);
     WriteType(out, v.type);
+    if (v.way) {
+      out << "way " << v.way->front_m << ' ' << v.way->back_m << ' ' << v.way->points.size();
+      for (const Point2& q : v.way->points) out << ' ' << q.x << ' ' << q.y;
+      out << '\n';
+    }
     for (const Carriage& c : v.carriages) {
       out << "carriage " << c.x_m << ' ' << c.y_m << ' ' << c.yaw_rad << ' ' << c.yaw_rate_radps
           << ' ' << c.length_m << ' ' << c.width_m << ' ' << (c.lanes ? 1 : 0) << '\n';
@@ -294,6 +299,21 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       if (has_lanes) c.lanes = LaneSet{};
       vehicle->carriages.push_back(std::move(c));
       lanes = has_lanes ? &*vehicle->carriages.back().lanes : nullptr;
+    } else if (kind == "way") {
+      if (!vehicle) throw InputError(r.where + ": 'way' must follow a vehicle");
+      Way w;
+      w.front_m = r.Num();
+      w.back_m = r.Num();
+      const double n = r.Num();
+      if (!(n >= 0.0 && n <= kMaxWayPoints))
+        throw InputError(r.where + ": a way has at most 48 points");
+      for (int k = 0; k < static_cast<int>(n); ++k) {
+        Point2 q;
+        q.x = r.Num();
+        q.y = r.Num();
+        w.points.push_back(q);
+      }
+      vehicle->way = std::move(w);
     } else if (kind == "footway") {
       if (!pedestrian) throw InputError(r.where + ": 'footway' must follow a pedestrian");
       pedestrian->stays_on_footway = true;

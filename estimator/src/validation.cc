@@ -93,6 +93,29 @@ void ValidateCarriages(const std::string& where, const std::vector<Carriage>& ca
   }
 }
 
+void ValidateWay(const std::string& where, const Way& way) {
+  const size_t n = way.points.size();
+  if (n < 2 || n > static_cast<size_t>(kMaxWayPoints))
+    Fail(where + ".points (count)", n, "must be from 2 to 48");
+  double length = 0.0;
+  for (size_t k = 0; k < n; ++k) {
+    const std::string at = where + ".points[" + std::to_string(k) + "]";
+    RequireFinite(at + ".x", way.points[k].x);
+    RequireFinite(at + ".y", way.points[k].y);
+    if (k == 0) continue;
+    const double d =
+        std::hypot(way.points[k].x - way.points[k - 1].x, way.points[k].y - way.points[k - 1].y);
+    if (d < 0.01) Fail(at, d, "must lie at least 1 cm from the point before it");
+    length += d;
+  }
+  RequireFinite(where + ".front_m", way.front_m);
+  RequireFinite(where + ".back_m", way.back_m);
+  if (way.back_m < 0.0) Fail(where + ".back_m", way.back_m, "must be >= 0 (on the way)");
+  if (!(way.front_m > way.back_m))
+    Fail(where + ".front_m", way.front_m, "must lie ahead of back_m");
+  if (way.front_m > length) Fail(where + ".front_m", way.front_m, "must lie on the way");
+}
+
 void ValidateLimits(const std::string& where, const RoadUserLimits& c) {
   RequirePositive(where + ".accel_mps2", c.accel_mps2);
   RequirePositive(where + ".decel_mps2", c.decel_mps2);
@@ -270,6 +293,7 @@ Params ParamsPreset(const std::string& name) {
     p.stop_obligation_at_once = false;
     p.route_end_leaves = false;
     p.road_user_classes = false;
+    p.bodies_on_way = false;
     return p;
   }
   std::string names;
@@ -315,6 +339,7 @@ void ValidateScene(const Scene& scene, const Params& /*params*/) {
     }
     ValidateType(where + ".type", v.type);
     ValidateCarriages(where, v.carriages);
+    if (v.way) ValidateWay(where + ".way", *v.way);
   }
   for (size_t i = 0; i < scene.pedestrians.size(); ++i) {
     const std::string where = ObjectName("scene.pedestrians", i, scene.pedestrians[i].id);

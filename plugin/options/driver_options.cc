@@ -214,6 +214,7 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.bent_bodies) o->scenes.bent_bodies = true;
   if (raw.bodies_on_path) o->scenes.bodies_on_path = true;
   if (raw.no_sumo_box) o->scenes.sumo_box = false;
+  if (raw.no_junction_ways) o->scenes.junction_ways = false;
   o->params = p;
   if (o->estimator.threads < 0)
     Bad("--threads " + std::to_string(o->estimator.threads) + ": must be >= 0 (0: all cores)");

@@ -222,6 +222,10 @@ void OptionTable::ModelChoices() {
       "junction-shapes", po::bool_switch(&raw.junction_shapes),
       "the default since 2026-12-05 (lanes through a junction along its internal lanes); "
       "accepted so that older campaign files still run")(
+      "no-junction-ways", po::bool_switch(&raw.no_junction_ways),
+      "ablation (ours): a vehicle whose body is in a junction is predicted like any other, "
+      "steering after its lanes; by default it moves along its way through the junction as "
+      "SUMO moves it, front and back on its lanes (estimator Params::bodies_on_way)")(
       "no-sumo-box", po::bool_switch(&raw.no_sumo_box),
       "ablation (ours): a vehicle's box is its length from its front along SUMO's angle, "
       "reaching past its back in a tight turn; by default it is SUMO's box, from its front to "

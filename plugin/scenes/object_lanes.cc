@@ -4,6 +4,7 @@
 
 #include "criticality/geometry.h"
 #include "plugin/network/polyline.h"
+#include "plugin/scenes/junction_way.h"
 
 namespace criticality::plugin {
 
@@ -135,6 +136,10 @@ ObjectLanes LanesOf(const VehicleOnLane& seen, const SceneConfig& config, double
                                     v.length_m + window + 1.0, v.route, v.route_index, c.centre);
     out.lane_heading = HeadingAlong(way, v.length_m, v.speed_mps, window, window);
   }
+  if (config.junction_ways && BodyInJunction(*network, v.lane, v.lane_position_m, v.way_length_m,
+                                             v.route, v.route_index))
+    out.way = WayOf(*network, v.lane, v.lane_position_m, v.way_length_m, v.route, v.route_index,
+                    c.centre, v.centre);
   const std::string reference = IsInternal(v.lane) ? beyond_junction : v.lane;
   if (!reference.empty()) Neighbours(v, reference, network, counter_lanes, &c);
   out.lanes = SampleLaneSet(c, reach, v.centre, config.lane_sampling);

@@ -41,6 +41,8 @@ struct VehicleOnLane {
   /** Its way through a junction follows the junction's internal lanes (SceneConfig::
    *  junction_shapes, the default); false: the chord from the lane's end to the next lane's start. */
   bool junction_shapes{true};
+  /** SUMO's length of it, front to back along its lanes (its way's body; length_m is its box). */
+  double way_length_m{4.5};
 };
 
 /** SceneConfig::lane_change_target: the lane of the same edge a vehicle is seen moving into
@@ -90,6 +92,9 @@ struct ObjectLanes {
    *  (MSVehicle::getBackPosition), this direction turned by the sideways motion
    *  (ObjectReader::LaneYawRateOr). */
   std::optional<double> lane_start_yaw_rad;
+  /** With SceneConfig::junction_ways, for a body in a junction (BodyInJunction): its way
+   *  (WayOf, through its corridor); nullopt otherwise. */
+  std::optional<Way> way;
 };
 
 /** See ObjectLanes::lane_heading: the heading's change over the half second around now (a

@@ -269,8 +269,10 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
   v.observable_only = config_.observable_only;
   v.blinker = BlinkerOf(o.signals);
   v.junction_shapes = config_.junction_shapes;
+  v.way_length_m = o.length_m;
   const ObjectLanes lanes = LanesOf(v, config_, step_s_, network_, &counter_lanes_);
   s.lanes = lanes.lanes;
+  s.way = lanes.way;
   s.state.route_end_m = lanes.route_end_m;
   s.state.yaw_rate_radps = LaneYawRateOr(s.state.yaw_rate_radps, lanes, heading, held);
   s.stop_line = StopLineOf(v, o.id, config_, network_, traffic_);

@@ -41,6 +41,8 @@ struct ObjectSnapshot {
   /** The boxes of a long body behind this one (plugin/scenes/carriages.h); length_m is the
    *  first box's. */
   std::vector<Carriage> carriages;
+  /** A vehicle's way in a junction (plugin/scenes/junction_way.h), in its own frame. */
+  std::optional<Way> way;
   /** SUMO's stop state: stopped (at a stop, a bus stop, in its lane) and parked (a parking
    *  stop); off_road: parked beside its lane (in a parking area), where it is nobody's
    *  obstacle. A parked vehicle is no ego; one off the road is no object either. */

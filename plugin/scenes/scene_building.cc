@@ -110,6 +110,7 @@ Scene BuildScene(const ObjectSnapshot& ego, const std::vector<const ObjectSnapsh
       v.stop_line = o->stop_line;
       v.type = o->type;
       v.carriages = o->carriages;
+      v.way = o->way;
       scene.vehicles.push_back(std::move(v));
     }
   }

@@ -89,6 +89,10 @@ struct SceneConfig {
    *  SUMO's box of it cleared; bench/RESULTS.md, twentieth stop). Where the body stands, which
    *  sensors see: observable_only keeps it. */
   bool sumo_box{true};
+  /** A vehicle whose front or back is on a junction's internal lane brings the way its body
+   *  moves along (plugin/scenes/junction_way.h, the estimator's Vehicle::way), which the
+   *  estimator moves it on (Params::bodies_on_way). --no-junction-ways: not sent. */
+  bool junction_ways{true};
   /** A vehicle's heading that SUMO turns faster than the vehicle can (beyond v r <= mu g since
    *  the previous step) is held for up to kMaxHeadingHoldS where SUMO's lane changes are
    *  instantaneous, and on or just off a junction's internal lane (ObjectReader::HeadingOf);

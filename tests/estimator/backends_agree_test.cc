@@ -266,6 +266,21 @@ TEST(BackendsAgree, BodiesOnTheirPath) {
   EXPECT_GE(changed, 1);  // the switch reaches the backends
 }
 
+// Bodies on their way (Vehicle::way): every vehicle of the random family given a tight right
+// turn ahead of it as its way; the same pair matrix.
+TEST(BackendsAgree, BodiesOnTheirWay) {
+  int with_collisions = 0, changed = 0;
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    const Scene plain = testing::RandomScene(seed, 4, 2, seed % 2 == 0);
+    const double free = testing::PCollision(plain);
+    const Scene scene = testing::WithTurningWays(plain, 3.0 + seed % 3);
+    with_collisions += ExpectSameResult(scene, Params{}, "seed " + std::to_string(seed)) > 0;
+    changed += testing::PCollision(scene) != free;
+  }
+  EXPECT_GE(with_collisions, 3);
+  EXPECT_GE(changed, 1);  // the ways reach the backends
+}
+
 // Poses held between the world's steps (Params::collisions_at_world_steps): the fast path skips
 // the box tests of blocks that only repeat poses tested before; the pair matrix must stay the
 // reference's, scalar and SIMD, whether the world's step is a multiple of the blocks or not.

@@ -1,5 +1,6 @@
 #pragma once
 // Scenes shared by the estimator tests.
+#include <cmath>
 #include <random>
 #include <string>
 #include <vector>
@@ -128,6 +129,26 @@ inline Scene WithTrailers(Scene s, RoadUser user) {
       c.lanes = v.lanes;
       v.carriages.push_back(c);
     }
+  }
+  return s;
+}
+
+/** The scene with every vehicle given a way (Vehicle::way) that turns right ahead of it at
+ *  `radius` (tighter than a car steers below about 5 m): from 1 m behind its back straight to
+ *  its front, a quarter circle in 12 pieces, then 30 m straight on. */
+inline Scene WithTurningWays(Scene s, double radius) {
+  for (Vehicle& v : s.vehicles) {
+    Way w;
+    const double half = 0.5 * v.length_m;
+    w.points.push_back({-half - 1.0, 0.0});
+    for (int k = 0; k <= 12; ++k) {
+      const double a = 1.5707963267948966 * k / 12.0;
+      w.points.push_back({half + radius * std::sin(a), -radius + radius * std::cos(a)});
+    }
+    w.points.push_back({half + radius, -radius - 30.0});
+    w.front_m = 2.0 * half + 1.0;
+    w.back_m = 1.0;
+    v.way = w;
   }
   return s;
 }

@@ -107,6 +107,10 @@ VARIANTS = [
             "experiment (ours): a vehicle in a junction turn too tight for its lane's samples "
             "gets a corner from where it is instead of no lanes (--lane-corner-in-turn)",
             {"act": "warn", "lane-corner-in-turn": "true"}),
+    Variant("no-junction-ways",
+            "ours predicting a vehicle whose body is in a junction like any other, steering "
+            "after its lanes, not along its way as SUMO moves it (--no-junction-ways)",
+            {"act": "warn", "no-junction-ways": "true"}),
     Variant("no-expected-accel-at-once",
             "ours holding a vehicle's current acceleration through the reaction latency also "
             "where its expected one is lower (--no-expected-accel-at-once)",

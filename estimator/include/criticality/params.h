@@ -267,6 +267,15 @@ struct Params {
    *  but changed no warning (the car's 0.5 rad of steering cannot follow SUMO's 1.6 m radius
    *  either). Driver: --lane-corner-in-turn. */
   bool lane_corner_in_turn{false};
+  /** A vehicle that brings its way (Vehicle::way: the SUMO driver sends it for a vehicle whose
+   *  body is in a junction) moves along it as the simulation moves it: its front and its back
+   *  on the way, its heading from back to front, at the speed of each profile; one path (it
+   *  cannot leave its internal lane). Without it a car in a tight turn was predicted on a
+   *  wide arc or its back swung across the road along its chord heading (bench/RESULTS.md,
+   *  twenty-fourth stop). Project choice; reads which lane of the junction it is on, which a
+   *  map gives from its place and blinker and SUMO from its route. Paper-literal: off.
+   *  Driver: --no-junction-ways stops sending the ways. */
+  bool bodies_on_way{true};
   /** The SUMO driver's lane sampling: a lane whose fitted centre line leaves the lane between
    *  its samples (lies farther than half the lane's width from its centre line, as a parabola
    *  through three samples of a short straight and a sharp junction turn does: 3.4 m towards

@@ -171,6 +171,20 @@ struct Ego {
 
 /** Another vehicle (a collision object, CO). Simulated with the one-track model (by its type:
  *  bicycles with the kinematic single-track model, rail vehicles along their track). */
+/** The line a vehicle's body moves along as the traffic simulation moves it: SUMO keeps the
+ *  middle of its front and of its back on the centre lines of its lanes and points it from its
+ *  back to its front (MSVehicle::computeAngle), also through a junction, where its lanes turn
+ *  tighter than a car steers and no parabola of the paper's lanes follows them. In the
+ *  vehicle's local frame; at most kMaxWayPoints points, consecutive ones at least 1 cm apart,
+ *  from at or behind its back (back_m >= 0) to as far ahead as it may go (beyond the last
+ *  point it goes straight on). estimator/ALGORITHM.md, "Bodies on their way". */
+struct Way {
+  std::vector<Point2> points;
+  double front_m{0.0};  ///< arc length along `points` of the middle of its front
+  double back_m{0.0};   ///< ... and of its back (front_m minus its length along the way)
+};
+constexpr int kMaxWayPoints = 48;
+
 struct Vehicle {
   std::string id;
   ObjectState state;
@@ -193,6 +207,9 @@ struct Vehicle {
    *  and every result know only the vehicle (estimator/ALGORITHM.md, "Long and articulated
    *  bodies"). */
   std::vector<Carriage> carriages;
+  /** Where given (and Params::bodies_on_way), its box moves along it: front and back on the
+   *  way at every step of every hypothesis, which differ only in their speed (one path). */
+  std::optional<Way> way;
 };
 
 /** A pedestrian (kinematic model, no lanes). SUMO's default person is 0.215 m x 0.478 m; a

@@ -19,12 +19,15 @@
  *    braking-causes-known
  *    type car|motorcycle|bicycle|heavy|rail [mass M] [accel A] [decel D] [emergency-decel E] [max-speed V]
  *    carriage x y yaw yaw_rate length width LANES(0|1)
+ *    way FRONT BACK N x0 y0 ... x(N-1) y(N-1)
  *  `lane` lines belong to the ego, vehicle or carriage line before them (for a vehicle or a
  *  carriage only when its LANES flag is 1); a `stop` line (Vehicle::stop_line,
  *  Ego::stop_line) to the vehicle or ego line before it; a `type` line (Ego::type,
  *  Vehicle::type: the road user class and the values given, absent: a car without values) to
  *  the ego or vehicle line before it; `carriage` lines
- *  (Vehicle::carriages, front to back) to the vehicle line before them; a
+ *  (Vehicle::carriages, front to back) to the vehicle line before them; a `way` line
+ *  (Vehicle::way: its front's and back's arc lengths, its N points) to the vehicle line before
+ *  it; a
  *  `footway` line (Pedestrian::stays_on_footway) to the pedestrian line before it; an
  *  `expected-accel` line sets ObjectState::expected_accel_mps2 of the ego, vehicle or
  *  pedestrian line before it (absent: not set), a `route-end` line the ObjectState::route_end_m
@@ -32,7 +35,7 @@
  *  ObjectState::braking_causes_known of the ego or vehicle line before it. A lane line ending in `straight-to-middle` sets
  *  Lane::straight_to_middle, one with `corner T` Lane::corner_tangent_m = T. An `euler-update-step` line (anywhere after the header; absent: 0)
  *  sets Scene::euler_update_step_s, a `bodies-on-path` line (likewise; absent: false)
- *  Scene::bodies_on_path. Version 1 throughout: `type` and `carriage` lines were added to it,
+ *  Scene::bodies_on_path. Version 1 throughout: `type`, `carriage` and `way` lines were added to it,
  *  and a file without them is the same as before they existed (a reader from before them
  *  rejects a file with them, naming the record). */
 // clang-format on

@@ -196,6 +196,22 @@ TEST(CudaBackend, ScenesWithCarriagesInABatchMatchTheCpu) {
   }
 }
 
+// Bodies on their way (Vehicle::way): the device steps them with the same core::WayStep.
+TEST(CudaBackend, BodiesOnTheirWayMatchTheCpu) {
+  SKIP_WITHOUT_DEVICE();
+  std::vector<Scene> scenes;
+  for (unsigned seed = 1; seed <= 4; ++seed)
+    scenes.push_back(testing::WithTurningWays(testing::RandomScene(seed, 4, 1, seed % 2 == 0), 3.0));
+  EstimatorOptions gpu_opt, cpu_opt;
+  gpu_opt.backend = Backend::kCuda;
+  cpu_opt.simd = false;
+  Estimator gpu(Params{}, gpu_opt), cpu(Params{}, cpu_opt);
+  const std::vector<Result> batch = gpu.EstimateBatch(scenes);
+  ASSERT_EQ(batch.size(), scenes.size());
+  for (size_t k = 0; k < scenes.size(); ++k)
+    EXPECT_NEAR(batch[k].p_collision, cpu.Estimate(scenes[k]).p_collision, 1e-4) << k;
+}
+
 TEST(CudaBackend, MissingDeviceIsAClearError) {
   std::string why;
   if (CudaUsable(&why)) GTEST_SKIP() << "a device is usable here";

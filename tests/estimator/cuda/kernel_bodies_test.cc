@@ -192,6 +192,13 @@ TEST(CudaKernelBodies, VehiclesThatLeaveTheSceneMatchTheCpuBackendExactly) {
   ExpectBatchSameAsCpu(scenes, "leaving batch");
 }
 
+TEST(CudaKernelBodies, BodiesOnTheirWayMatchTheCpuBackendExactly) {
+  std::vector<Scene> scenes;
+  for (unsigned seed = 1; seed <= 4; ++seed)
+    scenes.push_back(testing::WithTurningWays(testing::RandomScene(seed, 4, 1, seed % 2 == 0), 3.0));
+  ExpectBatchSameAsCpu(scenes, "ways batch");
+}
+
 TEST(CudaKernelBodies, OtherParametersAndDiscriminationScenesMatchTheCpuBackendExactly) {
   // Another step partition (odd instants, shorter horizon) and the paper-literal models: the
   // kernel bodies take everything from the hypothesis sets and the layout.
