@@ -133,6 +133,17 @@ CRIT_HD SimulationState InitialSimulationState(const HypothesisSet& h,
   return st;
 }
 
+/** The rest of a step along a track or a way, its position set: it heads `yaw` (its yaw rate
+ *  the change over the step), without sideslip, and its speed changes by v_dot. */
+CRIT_HD void TurnAlongPath(double yaw, double v_dot, double tau, MotionState* s) {
+  s->yaw_rate = (yaw - s->yaw) / tau;
+  s->yaw = yaw;
+  s->beta = 0.0;
+  s->v = s->v + v_dot * tau;
+  s->ax = v_dot;
+  s->ay = s->v * s->yaw_rate;
+}
+
 /** One step of a vehicle bound to its track (HypothesisSet::on_track): its speed changes by
  *  v_dot, its centre moves along the track by the distance that Euler step covers (v tau +
  *  a_x tau^2 / 2, as EulerStep moves every other model), at the track's direction, keeping its
@@ -151,12 +162,7 @@ CRIT_HD void TrackStep(const HypothesisSet& h, double v_dot, double tau, Simulat
   const double yaw = std::atan(m) + track.rot;
   s.x = track.cos_rot * xr - track.sin_rot * yr;
   s.y = track.sin_rot * xr + track.cos_rot * yr;
-  s.yaw_rate = (yaw - s.yaw) / tau;
-  s.yaw = yaw;
-  s.beta = 0.0;
-  s.v = s.v + v_dot * tau;
-  s.ax = v_dot;
-  s.ay = s.v * s.yaw_rate;
+  TurnAlongPath(yaw, v_dot, tau, &s);
 }
 
 /** The point at arc length `at` along a body's way (HypothesisSet::on_way), straight on
@@ -218,13 +224,7 @@ CRIT_HD void WayStep(const HypothesisSet& h, double v_dot, double tau, Simulatio
   st->track_x += s.v * tau + 0.5 * s.ax * tau * tau;
   double yaw;
   WayPose(h, st->track_x, true, &s.x, &s.y, &yaw);
-  yaw = s.yaw + WrapAngle(yaw - s.yaw);
-  s.yaw_rate = (yaw - s.yaw) / tau;
-  s.yaw = yaw;
-  s.beta = 0.0;
-  s.v = s.v + v_dot * tau;
-  s.ax = v_dot;
-  s.ay = s.v * s.yaw_rate;
+  TurnAlongPath(s.yaw + WrapAngle(yaw - s.yaw), v_dot, tau, &s);
 }
 
 /** What one vehicle simulation keeps from step to step besides its state: the frame change

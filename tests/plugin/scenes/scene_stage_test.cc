@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "../fake_sumo_world.h"
+#include "plugin/network/polyline.h"
 #include "plugin/scenes/carriages.h"
 #include "plugin/sumo/sumo_conventions.h"
 
@@ -379,6 +380,47 @@ TEST(SceneStage, ABodyBentByATurnIsAChainOfBoxesAlongItsWay) {
   ASSERT_NE(straight, nullptr);
   EXPECT_DOUBLE_EQ(straight->length_m, 12.0);
   EXPECT_TRUE(straight->carriages.empty());
+}
+
+TEST(SceneStage, AVehicleWhoseBodyIsInAJunctionBringsItsWayThroughIt) {
+  // The square right turn of the last test: the 12 m bus 1 m into E, its back on N at (0, -1),
+  // its body across the whole turn. Its way (SceneConfig::junction_ways) puts its front and
+  // back where SUMO has them, in its frame: its box (SUMO's, front to back) from -c/2 to c/2.
+  FakeSumoWorld w;
+  testing::AddSquareRightTurn(w);
+  SumoObject& bus = w.AddVehicle("bus", 6, 5, 45, 4.0, "E_0", 1.0, {"N", "E"});
+  bus.length_m = 12.0;
+  bus.width_m = 2.5;
+  bus.route_index = 1;
+  bus.body_length_m = std::hypot(6.0, 6.0);
+  w.AddVehicle("ego", 0, -20, 0, 5.0, "N_0", 80.0, {"N", "E"});
+  auto read = [&](SceneConfig config) {
+    SceneStage stage(config, w.StepLength(), true, &w, &w);
+    return stage.Run(Observe(w, {"ego"})).scenes.at(0);
+  };
+  const Scene s = read(SceneConfig{});
+  const Vehicle* b = VehicleIn(s, "bus");
+  ASSERT_NE(b, nullptr);
+  ASSERT_TRUE(b->way.has_value());
+  const Way& way = *b->way;
+  EXPECT_NEAR(way.front_m - way.back_m, 12.0, 1e-9);  // SUMO's length along its lanes
+  double heading = 0.0;
+  const Point2 front = PointAlong(way.points, way.front_m, &heading);
+  const Point2 back = PointAlong(way.points, way.back_m, &heading);
+  const double half = 0.5 * std::hypot(6.0, 6.0);
+  EXPECT_NEAR(front.x, half, 1e-9);
+  EXPECT_NEAR(front.y, 0.0, 1e-9);
+  EXPECT_NEAR(back.x, -half, 1e-9);
+  EXPECT_NEAR(back.y, 0.0, 1e-9);
+  // --no-junction-ways: none; far into E (out of the junction): none.
+  SceneConfig off;
+  off.junction_ways = false;
+  EXPECT_FALSE(VehicleIn(read(off), "bus")->way.has_value());
+  w.Find("bus")->x_m = 40.0;
+  w.Find("bus")->angle_deg = 90.0;
+  w.Find("bus")->lane_position_m = 35.0;
+  w.Find("bus")->body_length_m = 12.0;
+  EXPECT_FALSE(VehicleIn(read(SceneConfig{}), "bus")->way.has_value());
 }
 
 TEST(SceneStage, YawRateIsTheHeadingChangeOrWithLongStepsTheLanes) {
