@@ -73,6 +73,28 @@ VehicleType SeenType(const VehicleType& type) {
   return seen;
 }
 
+// Where the vehicle is on its lanes, as scene extraction's geometry reads it: its centre `c`
+// and box length (the snapshot's), SUMO's lane position, route, class, blinker and length.
+VehicleOnLane OnLane(const SumoObject& o, const Pose2& c, double speed_mps, double box_length_m,
+                     const SceneConfig& config) {
+  VehicleOnLane v;
+  v.centre = c;
+  v.front = Point2{o.x_m, o.y_m};
+  v.speed_mps = speed_mps;
+  v.length_m = box_length_m;
+  v.lane = o.lane;
+  v.lane_position_m = o.lane_position_m;
+  v.lane_index = o.lane_index;
+  v.route = o.route;
+  v.route_index = o.route_index;
+  v.vehicle_class = o.vehicle_class;
+  v.observable_only = config.observable_only;
+  v.blinker = BlinkerOf(o.signals);
+  v.junction_shapes = config.junction_shapes;
+  v.way_length_m = o.length_m;
+  return v;
+}
+
 }  // namespace
 
 ObjectReader::ObjectReader(const SceneConfig& config, double step_s, RoadNetwork* network,
@@ -255,21 +277,7 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
       s.leader->gap_m > network_->Lane(o.lane).length_m - o.lane_position_m)
     s.leader.reset();
   if (!Finite(s.state)) return s;
-  VehicleOnLane v;
-  v.centre = c;
-  v.front = Point2{o.x_m, o.y_m};
-  v.speed_mps = s.state.speed_mps;
-  v.length_m = s.length_m;
-  v.lane = o.lane;
-  v.lane_position_m = o.lane_position_m;
-  v.lane_index = o.lane_index;
-  v.route = o.route;
-  v.route_index = o.route_index;
-  v.vehicle_class = o.vehicle_class;
-  v.observable_only = config_.observable_only;
-  v.blinker = BlinkerOf(o.signals);
-  v.junction_shapes = config_.junction_shapes;
-  v.way_length_m = o.length_m;
+  const VehicleOnLane v = OnLane(o, c, s.state.speed_mps, s.length_m, config_);
   const ObjectLanes lanes = LanesOf(v, config_, step_s_, network_, &counter_lanes_);
   s.lanes = lanes.lanes;
   s.way = lanes.way;
