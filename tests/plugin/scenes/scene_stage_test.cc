@@ -300,11 +300,11 @@ TEST(SceneStage, AWalkerWaitingAtACrossingItMayNotEnterKeepsToTheFootway) {
   EXPECT_FALSE(read(off).pedestrians[1].state.expected_accel_mps2.has_value());
 }
 
-TEST(SceneStage, ABodyBentByATurnIsAChainOfBoxesAlongItsWay) {
-  // A square right turn: N north to (0, 0), the internal lane (0, 0) -> (0, 5) -> (5, 5), E east
-  // from (5, 5). A 12 m bus 1 m into E stands along 1 m of E, the whole turn and 1 m of N: its
-  // back at (0, -1), so SUMO's angle (back to front) is 45 degrees across both lanes.
-  FakeSumoWorld w;
+// A square right turn: N north to (0, 0), the internal lane (0, 0) -> (0, 5) -> (5, 5), E east
+// from (5, 5). A 12 m bus 1 m into E stands along 1 m of E, the whole turn and 1 m of N: its
+// back at (0, -1), so SUMO's angle (back to front) is 45 degrees across both lanes. An ego
+// comes up N 20 m behind the junction.
+void AddBusAcrossASquareTurn(FakeSumoWorld& w) {
   testing::AddSquareRightTurn(w);
   SumoObject& bus = w.AddVehicle("bus", 6, 5, 45, 4.0, "E_0", 1.0, {"N", "E"});
   bus.length_m = 12.0;
@@ -312,6 +312,11 @@ TEST(SceneStage, ABodyBentByATurnIsAChainOfBoxesAlongItsWay) {
   bus.route_index = 1;
   bus.body_length_m = std::hypot(6.0, 6.0);  // SUMO's box, as the observe stage measures it
   w.AddVehicle("ego", 0, -20, 0, 5.0, "N_0", 80.0, {"N", "E"});
+}
+
+TEST(SceneStage, ABodyBentByATurnIsAChainOfBoxesAlongItsWay) {
+  FakeSumoWorld w;
+  AddBusAcrossASquareTurn(w);
   auto read = [&](SceneConfig config, const std::string& ego) {
     SceneStage stage(config, w.StepLength(), true, &w, &w);
     return stage.Run(Observe(w, {ego})).scenes.at(0);
@@ -383,17 +388,11 @@ TEST(SceneStage, ABodyBentByATurnIsAChainOfBoxesAlongItsWay) {
 }
 
 TEST(SceneStage, AVehicleWhoseBodyIsInAJunctionBringsItsWayThroughIt) {
-  // The square right turn of the last test: the 12 m bus 1 m into E, its back on N at (0, -1),
-  // its body across the whole turn. Its way (SceneConfig::junction_ways) puts its front and
-  // back where SUMO has them, in its frame: its box (SUMO's, front to back) from -c/2 to c/2.
+  // The bus across the whole turn, its back on N at (0, -1). Its way (SceneConfig::
+  // junction_ways) puts its front and back where SUMO has them, in its frame: its box (SUMO's,
+  // front to back) from -c/2 to c/2.
   FakeSumoWorld w;
-  testing::AddSquareRightTurn(w);
-  SumoObject& bus = w.AddVehicle("bus", 6, 5, 45, 4.0, "E_0", 1.0, {"N", "E"});
-  bus.length_m = 12.0;
-  bus.width_m = 2.5;
-  bus.route_index = 1;
-  bus.body_length_m = std::hypot(6.0, 6.0);
-  w.AddVehicle("ego", 0, -20, 0, 5.0, "N_0", 80.0, {"N", "E"});
+  AddBusAcrossASquareTurn(w);
   auto read = [&](SceneConfig config) {
     SceneStage stage(config, w.StepLength(), true, &w, &w);
     return stage.Run(Observe(w, {"ego"})).scenes.at(0);
