@@ -48,14 +48,26 @@ std::optional<Way> WayOf(RoadNetwork& network, const std::string& lane, double l
     at.resize(n);
     for (int k = 0; k < n; ++k) at[k] = start + (end - start) * k / (n - 1);
   }
+  // The points in the vehicle's frame; one too close to the point before it (a line folding
+  // back on itself at a U-turn's apex) is left out, its arc length with it, the end kept.
   Way way;
+  std::vector<double> used;
   for (double s : at) {
     double heading = 0.0;
     const Point2 w = PointAlong(line.line, s, &heading);
     Point2 p;
     WorldToLocal(X_WV, w.x, w.y, &p.x, &p.y);
+    if (!way.points.empty() && std::hypot(p.x - way.points.back().x,
+                                          p.y - way.points.back().y) < kMinWayPointSpacingM) {
+      if (s != at.back() || way.points.size() < 2) continue;
+      way.points.pop_back();  // the end replaces the point just before it
+      used.pop_back();
+    }
     way.points.push_back(p);
+    used.push_back(s);
   }
+  if (way.points.size() < 2) return std::nullopt;
+  at = used;
   // Arc lengths along the kept points (shorter than the line's where it was resampled).
   std::vector<double> kept(way.points.size(), 0.0);
   for (std::size_t k = 1; k < kept.size(); ++k)
@@ -70,6 +82,7 @@ std::optional<Way> WayOf(RoadNetwork& network, const std::string& lane, double l
   };
   way.front_m = map(line.front_m);
   way.back_m = std::max(0.0, map(line.front_m - length_m));
+  if (!(way.front_m > way.back_m) || !(way.front_m <= kept.back())) return std::nullopt;
   return way;
 }
 

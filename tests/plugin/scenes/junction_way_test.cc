@@ -73,5 +73,26 @@ TEST(JunctionWay, ALongCorridorIsResampledToTheEstimatorsPointsWithItsEndsKept) 
   EXPECT_NEAR(front.y, 0.0, 0.05);
 }
 
+TEST(JunctionWay, ALineFoldingBackOnItselfGivesNoPointsTheEstimatorWouldRefuse) {
+  // After the turn the corridor goes 1.5 cm on east and back to within 1.4 mm of the corner
+  // (netconvert's shapes can fold like this at a U-turn's apex): that point is more than 2 cm
+  // on along the line but not 1 cm from the corner, which Vehicle::way must not hold.
+  FakeSumoWorld w;
+  testing::AddSquareRightTurn(w);
+  const std::vector<Point2> ahead = {{0, 0},         {0, 5},         {5, 5},
+                                     {5.015, 5.0}, {5.001, 5.001}, {5.001, 40}};
+  const Pose2 X_WV{0.0, 0.75, 0.5 * 3.14159265358979323846};
+  const std::optional<Way> way = WayOf(w, ":J_0_0", 3.0, 4.5, {"N", "E"}, 0, ahead, X_WV);
+  ASSERT_TRUE(way.has_value());
+  for (size_t k = 1; k < way->points.size(); ++k) {
+    EXPECT_GE(std::hypot(way->points[k].x - way->points[k - 1].x,
+                         way->points[k].y - way->points[k - 1].y),
+              0.01)
+        << k;
+  }
+  EXPECT_NEAR(At(*way, way->front_m).x, 2.25, 1e-9);
+  EXPECT_NEAR(At(*way, way->back_m).x, -2.25, 1e-9);
+}
+
 }  // namespace
 }  // namespace criticality::plugin
