@@ -920,8 +920,11 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
       // every hypothesis.
       const bool same_lanes = car_fitted.left.has_value() == fitted.left.has_value() &&
                               car_fitted.right.has_value() == fitted.right.has_value();
-      c.on_way = false;  // its own lane (the vehicle's way is the vehicle's)
-      c.n_way = 0;
+      if (on_way) {  // its own lane, steered as any vehicle's (the way is the vehicle's)
+        c.on_way = false;
+        c.n_way = 0;
+        c.steer_latency = params.steer_latency_s;
+      }
       SetPaths(car_fitted, params, /*combine=*/false, a_ref, &c, nullptr,
                track || on_way || !same_lanes);
       if (track) PutOnTrack(&c);  // its own track, replacing the copy of the vehicle's

@@ -151,6 +151,26 @@ TEST(BodiesOnWay, AWayThatDoesNotPassTheVehicleIsNotItsWay) {
   EXPECT_GT(pb.cos[0].n_paths, 1);
 }
 
+TEST(BodiesOnWay, ATrailerOfAVehicleOnItsWayIsSteeredAlongItsOwnLane) {
+  // The tractor is bound to its way; its trailer (a carriage: its own box and lanes) is not,
+  // and keeps a vehicle's steering latency rather than the bound tractor's none.
+  Scene scene = TurningVehicle(6.0, RightTurnWay(kRadius));
+  Carriage trailer;
+  trailer.x_m = 100.0 - 0.5 * kLength - 0.5 - 5.0;
+  trailer.y_m = 50.0;
+  trailer.length_m = 10.0;
+  scene.vehicles[0].carriages.push_back(trailer);
+  const Params p;
+  const Problem pb = BuildProblem(scene, p);
+  ASSERT_EQ(pb.cos.size(), 2u);
+  EXPECT_TRUE(pb.cos[0].on_way);
+  EXPECT_FALSE(pb.cos[1].on_way);
+  EXPECT_EQ(pb.cos[1].n_way, 0);
+  EXPECT_EQ(pb.cos[1].n_paths, 1);  // the vehicle's one path: its lane's centre
+  EXPECT_EQ(pb.cos[1].steer_latency, p.steer_latency_s);
+  EXPECT_EQ(pb.cos[0].steer_latency, 0.0);
+}
+
 TEST(BodiesOnWay, BadWaysAreOneLineErrorsNamingTheVehicle) {
   auto error_of = [](const Way& way) {
     try {
