@@ -202,12 +202,13 @@ void PutOnTrack(core::HypothesisSet* h) {
   h->track_offset = (-(xr - foot) * mf + (yr - c.Eval(foot))) / std::sqrt(1.0 + mf * mf);
 }
 
-// Binds a vehicle to its way (Params::bodies_on_way, after SetPaths gave it its one path and
-// SetPose its box) where the way puts it within kWayMaxShiftM and kWayMaxTurnRad of its
-// measured pose (a way that does not pass it is not its way): its pose is then the way's,
-// moved by that difference at every step. Returns whether it is bound.
+// Binds a vehicle to its way (Params::bodies_on_way, after SetPose gave it its box) where the
+// way puts it within kWayMaxShiftM and kWayMaxTurnRad of its measured pose (a way that does
+// not pass it is not its way): its pose is then the way's, moved by that difference at every
+// step. Returns whether it is bound; if not, the set is left as it was.
 constexpr double kWayMaxShiftM = 1.0;
 constexpr double kWayMaxTurnRad = 0.35;
+static_assert(core::kMaxWayPointsCore == kMaxWayPoints, "the core holds every point of a way");
 bool PutOnWay(const Way& way, core::HypothesisSet* h) {
   const int n = static_cast<int>(std::min<size_t>(way.points.size(), core::kMaxWayPointsCore));
   double at = 0.0;
@@ -227,7 +228,11 @@ bool PutOnWay(const Way& way, core::HypothesisSet* h) {
   const double c = std::cos(yaw), s = std::sin(yaw);
   const double dx = -c * x - s * y, dy = s * x - c * y;
   if (std::hypot(dx, dy) > kWayMaxShiftM || std::fabs(yaw) > kWayMaxTurnRad) {
+    std::fill(h->way_x, h->way_x + n, 0.0);
+    std::fill(h->way_y, h->way_y + n, 0.0);
+    std::fill(h->way_s, h->way_s + n, 0.0);
     h->n_way = 0;
+    h->way_body = 0.0;
     return false;
   }
   h->on_way = true;
@@ -869,13 +874,11 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
         &accel, nullptr, stop ? &*stop : nullptr, &stop_profile);
     const bool track = TrackBound(v.type, params);
     // On its way (Params::bodies_on_way) where the way passes it; one path, as on a track.
-    core::HypothesisSet probe = h;
-    const bool on_way = !track && params.bodies_on_way && v.way && PutOnWay(*v.way, &probe);
+    const bool on_way = !track && params.bodies_on_way && v.way && PutOnWay(*v.way, &h);
     if (track || on_way) h.steer_latency = 0.0;
     const std::vector<PathScore> paths =
         SetPaths(fitted, params, /*combine=*/false, a_ref, &h, nullptr, track || on_way);
     if (track) PutOnTrack(&h);
-    if (on_way) PutOnWay(*v.way, &h);
     AppendProbabilities(profiles, paths, params, &pb.co_probability);
     if (stop_profile >= 0) {
       // A mixture: complying (every hypothesis scored against the stopping profile as the
