@@ -83,6 +83,12 @@ struct HypothesisSet {
   double way_s[kMaxWayPointsCore]{};
   double way_body{0.0};
   double way_dx{0.0}, way_dy{0.0}, way_dyaw{0.0};
+  /** Lateral paths along the way (Params::way_lateral_paths; all zero: one path on the way):
+   *  the sideways offset (positive to the left) from where it started beside its way that
+   *  path section l asks at sample instant k, the section's offset from the reference path
+   *  there. Reached from the lateral latency on (WayLateralTarget), sideways at most
+   *  kWayCrabSlope per metre driven. */
+  double way_lateral[kMaxSampleInstants][kMaxLateralSamples]{};
   /** The vehicle leaves the scene once its centre has travelled this far along its way
    *  (Params::route_end_leaves): its poses from then on lie far from everything (kGoneX), so
    *  they collide with nothing. +inf: it stays. */

@@ -91,6 +91,10 @@ struct SimulationState {
   int held_section{-2};
   double travelled{0.0};  ///< distance its centre has covered (for HypothesisSet::leave_distance)
   double track_x{0.0};    ///< on a track: where it is along reference_path (the path's frame)
+  /** On a way (HypothesisSet::on_way): how far it has moved sideways from its start beside
+   *  the way (positive to the left), and the angle its last step's sideways move turned it
+   *  from the way's heading. */
+  double way_lat{0.0}, way_crab{0.0};
   /** HypothesisSet::pose_hold_steps: the pose (scene frame) the poses in between repeat, and
    *  (for the CPU's SIMD path, which stores them) its heading's cos and sin. */
   double held_x{0.0}, held_y{0.0}, held_yaw{0.0}, held_c{1.0}, held_s{0.0};
@@ -189,9 +193,9 @@ CRIT_HD void PointOnWay(const HypothesisSet& h, double at, double* x, double* y,
 
 /** The pose (local frame) of a body whose front is at arc length `front` on its way, as the
  *  simulation places it: front and back on the way, heading from back to front, centre half
- *  its length behind the front; `moved`: then moved by (way_dx, way_dy, way_dyaw). */
-CRIT_HD void WayPose(const HypothesisSet& h, double front, bool moved, double* x, double* y,
-                     double* yaw) {
+ *  its length behind the front; `moved`: then moved by (way_dx, way_dy + lat, way_dyaw). */
+CRIT_HD void WayPose(const HypothesisSet& h, double front, bool moved, double lat, double* x,
+                     double* y, double* yaw) {
   double fx, fy, bx, by, dx, dy;
   PointOnWay(h, front, &fx, &fy, &dx, &dy);
   PointOnWay(h, front - h.way_body, &bx, &by, &dx, &dy);
@@ -211,20 +215,51 @@ CRIT_HD void WayPose(const HypothesisSet& h, double front, bool moved, double* x
     *y = cy;
     return;
   }
-  *x = cx + ux * h.way_dx - uy * h.way_dy;
-  *y = cy + uy * h.way_dx + ux * h.way_dy;
+  const double across = h.way_dy + lat;
+  *x = cx + ux * h.way_dx - uy * across;
+  *y = cy + uy * h.way_dx + ux * across;
   *yaw += h.way_dyaw;
 }
 
+/** The most a body on its way moves sideways per metre it drives (lateral paths along the
+ *  way): tan 0.35 rad, the heading off its way beyond which a body is not on it (problem.cc,
+ *  kWayMaxTurnRad), so that it never crabs farther off its way's heading than that. */
+constexpr double kWayCrabSlope = 0.365;
+
+/** The sideways offset path `path` asks of a body on its way at time t: none until the
+ *  lateral latency; then, linearly in time, each sample instant's offset (way_lateral) by that
+ *  instant; the last one's after it. */
+CRIT_HD double WayLateralTarget(const HypothesisSet& h, int path, double t) {
+  if (t < h.steer_latency) return 0.0;
+  double t0 = h.steer_latency, o0 = 0.0;
+  const int n = h.n_instants < kMaxSampleInstants ? h.n_instants : kMaxSampleInstants;
+  for (int k = 0; k < n; ++k) {
+    const double t1 = h.instant_time[k];
+    const double o1 = h.way_lateral[k][SectionOfPath(h, path, k)];
+    if (t < t1) return t1 > t0 ? o0 + (o1 - o0) * (t - t0) / (t1 - t0) : o1;
+    if (t1 > t0) t0 = t1;
+    o0 = o1;
+  }
+  return o0;
+}
+
 /** One step of a body bound to its way (HypothesisSet::on_way): its speed changes by v_dot,
- *  its front moves along the way by the distance that Euler step covers (as TrackStep), and
- *  its pose follows (WayPose; the yaw unwrapped from the last step's). */
-CRIT_HD void WayStep(const HypothesisSet& h, double v_dot, double tau, SimulationState* st) {
+ *  its front moves along the way by the distance that Euler step covers (as TrackStep), it
+ *  moves sideways towards its path's offset (WayLateralTarget, at most kWayCrabSlope of that
+ *  distance), and its pose follows (WayPose, turned by the sideways move's angle; the yaw
+ *  unwrapped from the last step's). */
+CRIT_HD void WayStep(const HypothesisSet& h, int path, double t, double v_dot, double tau,
+                     SimulationState* st) {
   MotionState& s = st->s;
-  st->track_x += s.v * tau + 0.5 * s.ax * tau * tau;
+  const double ds = s.v * tau + 0.5 * s.ax * tau * tau;
+  st->track_x += ds;
+  const double reach = kWayCrabSlope * (ds > 0.0 ? ds : 0.0);
+  const double side = Clamp(WayLateralTarget(h, path, t + tau) - st->way_lat, -reach, reach);
+  st->way_lat += side;
+  st->way_crab = side != 0.0 ? std::atan2(side, ds) : 0.0;
   double yaw;
-  WayPose(h, st->track_x, true, &s.x, &s.y, &yaw);
-  TurnAlongPath(s.yaw + WrapAngle(yaw - s.yaw), v_dot, tau, &s);
+  WayPose(h, st->track_x, true, st->way_lat, &s.x, &s.y, &yaw);
+  TurnAlongPath(s.yaw + WrapAngle(yaw + st->way_crab - s.yaw), v_dot, tau, &s);
 }
 
 /** What one vehicle simulation keeps from step to step besides its state: the frame change
@@ -278,8 +313,11 @@ CRIT_HD void StorePose(const HypothesisSet& h, const StepContext& c, const Simul
     if (h.on_way) {
       // Along the way itself: where the simulator's update puts the front.
       double yaw_lead = 0.0;
-      if (h.position_lead > 0.0)
-        WayPose(h, st.track_x + (s.v - h.v0) * h.position_lead, true, &px, &py, &yaw_lead);
+      if (h.position_lead > 0.0) {
+        WayPose(h, st.track_x + (s.v - h.v0) * h.position_lead, true, st.way_lat, &px, &py,
+                &yaw_lead);
+        yaw_lead += st.way_crab;
+      }
       *x = h.X_WL.x + c.c0 * px - c.s0 * py;
       *y = h.X_WL.y + c.s0 * px + c.c0 * py;
       *yaw = h.X_WL.yaw + (h.position_lead > 0.0 ? s.yaw + WrapAngle(yaw_lead - s.yaw) : s.yaw);
@@ -338,7 +376,7 @@ CRIT_HD void VehicleStep(const HypothesisSet& h, const SimulationConfig& cfg, in
     a = NonReversingAccel(s.v, TopSpeedAccel(s.v, a, tau, h.top_speed), tau);
     st->steer = 0.0;
     if (h.on_way) {
-      WayStep(h, a, tau, st);
+      WayStep(h, path, t, a, tau, st);
     } else {
       TrackStep(h, a, tau, st);
     }

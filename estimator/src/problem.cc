@@ -224,7 +224,7 @@ bool PutOnWay(const Way& way, core::HypothesisSet* h) {
   h->n_way = n;
   h->way_body = way.front_m - way.back_m;
   double x, y, yaw;
-  core::WayPose(*h, way.front_m, false, &x, &y, &yaw);
+  core::WayPose(*h, way.front_m, false, 0.0, &x, &y, &yaw);
   const double c = std::cos(yaw), s = std::sin(yaw);
   const double dx = -c * x - s * y, dy = s * x - c * y;
   if (std::hypot(dx, dy) > kWayMaxShiftM || std::fabs(yaw) > kWayMaxTurnRad) {
@@ -369,7 +369,9 @@ std::vector<PathScore> SetPaths(const FittedLanes& lanes, const Params& p, bool 
     const double x =
         core::XAfterArc(reference, 0.0, ReferenceDistance(h->v0, a_ref, p.path_sample_times_s[k]));
     for (int l = 0; l < n_lat; ++l) {
-      offset[k * n_lat + l] = std::fabs(samples[l].curve.Eval(x) - reference.Eval(x));
+      const double across = samples[l].curve.Eval(x) - reference.Eval(x);
+      offset[k * n_lat + l] = std::fabs(across);
+      if (h->on_way) h->way_lateral[k][l] = across;  // its paths along its way
     }
   }
   std::vector<PathScore> scores(n_paths);
@@ -873,11 +875,13 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
         params, a_ref, ProfileStartAccel(v.state, stop, params), RangeOf(v.type, params), &h,
         &accel, nullptr, stop ? &*stop : nullptr, &stop_profile);
     const bool track = TrackBound(v.type, params);
-    // On its way (Params::bodies_on_way) where the way passes it; one path, as on a track.
+    // On its way (Params::bodies_on_way) where the way passes it: its lanes' lateral samples
+    // as paths along it (Params::way_lateral_paths), else one path, as on a track.
     const bool on_way = !track && params.bodies_on_way && v.way && PutOnWay(*v.way, &h);
-    if (track || on_way) h.steer_latency = 0.0;
+    const bool one_path = track || (on_way && !params.way_lateral_paths);
+    if (one_path) h.steer_latency = 0.0;
     const std::vector<PathScore> paths =
-        SetPaths(fitted, params, /*combine=*/false, a_ref, &h, nullptr, track || on_way);
+        SetPaths(fitted, params, /*combine=*/false, a_ref, &h, nullptr, one_path);
     if (track) PutOnTrack(&h);
     AppendProbabilities(profiles, paths, params, &pb.co_probability);
     if (stop_profile >= 0) {
@@ -926,6 +930,8 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
       if (on_way) {  // its own lane, steered as any vehicle's (the way is the vehicle's)
         c.on_way = false;
         c.n_way = 0;
+        std::fill(&c.way_lateral[0][0], &c.way_lateral[0][0] + sizeof c.way_lateral / sizeof(double),
+                  0.0);
         c.steer_latency = params.steer_latency_s;
       }
       SetPaths(car_fitted, params, /*combine=*/false, a_ref, &c, nullptr,

@@ -226,6 +226,11 @@ void OptionTable::ModelChoices() {
       "ablation (ours): a vehicle whose body is in a junction is predicted like any other, "
       "steering after its lanes; by default it moves along its way through the junction as "
       "SUMO moves it, front and back on its lanes (estimator Params::bodies_on_way)")(
+      "way-lateral-paths", po::bool_switch(&raw.way_lateral_paths),
+      "experimental (ours, off by default: it lost warned overlaps on the held-out networks, "
+      "bench/RESULTS.md): a vehicle moving along its way through a junction gets the lateral "
+      "samples of its lanes as paths beside its way; by default it has one path, on its way "
+      "(estimator Params::way_lateral_paths)")(
       "no-sumo-box", po::bool_switch(&raw.no_sumo_box),
       "ablation (ours): a vehicle's box is its length from its front along SUMO's angle, "
       "reaching past its back in a tight turn; by default it is SUMO's box, from its front to "

@@ -269,16 +269,23 @@ TEST(BackendsAgree, BodiesOnTheirPath) {
 // Bodies on their way (Vehicle::way): every vehicle of the random family given a tight right
 // turn ahead of it as its way; the same pair matrix.
 TEST(BackendsAgree, BodiesOnTheirWay) {
-  int with_collisions = 0, changed = 0;
+  // With one path on the way (the default) and with their lanes' lateral paths beside it
+  // (the experiment Params::way_lateral_paths).
+  Params one_path, lateral;
+  lateral.way_lateral_paths = true;
+  int with_collisions = 0, changed = 0, lateral_changed = 0;
   for (unsigned seed = 1; seed <= 8; ++seed) {
     const Scene plain = testing::RandomScene(seed, 4, 2, seed % 2 == 0);
     const double free = testing::PCollision(plain);
     const Scene scene = testing::WithTurningWays(plain, 3.0 + seed % 3);
     with_collisions += ExpectSameResult(scene, Params{}, "seed " + std::to_string(seed)) > 0;
+    ExpectSameResult(scene, lateral, "lateral paths, seed " + std::to_string(seed));
     changed += testing::PCollision(scene) != free;
+    lateral_changed += testing::PCollision(scene, lateral) != testing::PCollision(scene, one_path);
   }
   EXPECT_GE(with_collisions, 3);
-  EXPECT_GE(changed, 1);  // the ways reach the backends
+  EXPECT_GE(changed, 1);          // the ways reach the backends
+  EXPECT_GE(lateral_changed, 1);  // and so do the paths beside them
 }
 
 // Poses held between the world's steps (Params::collisions_at_world_steps): the fast path skips

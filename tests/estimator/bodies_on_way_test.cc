@@ -79,13 +79,14 @@ struct Offsets {
   double travelled{0.0};
 };
 
-// Simulates every hypothesis of the vehicle (set 0) and measures, in its frame, how far its
-// front and back stray from the way.
-Offsets Stray(const Problem& pb, const std::vector<Point2>& way) {
+// Simulates every hypothesis of the vehicle (set 0; those of path `only` where given) and
+// measures, in its frame, how far its front and back stray from the way.
+Offsets Stray(const Problem& pb, const std::vector<Point2>& way, int only = -1) {
   const core::HypothesisSet& h = pb.cos[0];
   Offsets o;
   std::vector<double> x(pb.sim.n_steps), y(pb.sim.n_steps), yaw(pb.sim.n_steps);
   for (int t = 0; t < h.Trajectories(); ++t) {
+    if (only >= 0 && t % h.n_paths != only) continue;
     core::SimulateHypothesis(h, pb.sim, t / h.n_paths, t % h.n_paths, x.data(), y.data(),
                              yaw.data());
     for (int n = 0; n < pb.sim.n_steps; ++n) {
@@ -102,15 +103,124 @@ Offsets Stray(const Problem& pb, const std::vector<Point2>& way) {
   return o;
 }
 
+// Params with the experiment of lateral paths beside the way (Params::way_lateral_paths).
+Params LateralPathsOnWay() {
+  Params p;
+  p.way_lateral_paths = true;
+  return p;
+}
+
+// The path of a vehicle on its way that asks no sideways offset at any instant (its lane's
+// centre, where it stands on it); -1 if none.
+int PathAlongTheWay(const core::HypothesisSet& h) {
+  for (int path = 0; path < h.n_paths; ++path) {
+    bool zero = true;
+    for (int k = 0; k < h.n_instants; ++k)
+      zero = zero && h.way_lateral[k][core::SectionOfPath(h, path, k)] == 0.0;
+    if (zero) return path;
+  }
+  return -1;
+}
+
 TEST(BodiesOnWay, AVehicleInATightTurnKeepsItsFrontAndBackOnItsWay) {
   const Way way = RightTurnWay(kRadius);
   const Problem pb = BuildProblem(TurningVehicle(6.0, way), Params{});
   ASSERT_TRUE(pb.cos[0].on_way);
-  EXPECT_EQ(pb.cos[0].n_paths, 1);  // it cannot leave its way: its hypotheses are its profiles
+  EXPECT_EQ(pb.cos[0].n_paths, 1);  // its hypotheses are its profiles
   const Offsets o = Stray(pb, way.points);
   EXPECT_LT(o.front, 0.01);
   EXPECT_LT(o.back, 0.01);
   EXPECT_GT(o.travelled, 5.0);  // it went round the turn, not stood still
+  // With lateral paths beside it (the experiment), the one along the way stays on it as well.
+  const Problem lateral = BuildProblem(TurningVehicle(6.0, way), LateralPathsOnWay());
+  ASSERT_TRUE(lateral.cos[0].on_way);
+  ASSERT_GT(lateral.cos[0].n_paths, 1);
+  const int along = PathAlongTheWay(lateral.cos[0]);
+  ASSERT_GE(along, 0);
+  const Offsets on = Stray(lateral, way.points, along);
+  EXPECT_LT(on.front, 0.01);
+  EXPECT_LT(on.back, 0.01);
+}
+
+// A vehicle at (100, 50) heading +x on a straight way along its heading, 0.3 m to its right
+// when `beside` (its frame: x along it, y across).
+Way StraightWay(double beside) {
+  Way w;
+  w.points.push_back({-6.0, -beside});
+  w.points.push_back({2.25, -beside});
+  w.points.push_back({60.0, -beside});
+  w.front_m = 8.25;
+  w.back_m = 8.25 - kLength;
+  return w;
+}
+
+TEST(BodiesOnWay, AVehicleOnItsWayKeepsItsLanesLateralPathsBesideIt) {
+  // Its lanes' lateral samples are its paths (as without a way), each moving it sideways from
+  // where it started, after the lateral latency, at most kWayCrabSlope per metre driven,
+  // turned by the angle of that move, to the sample's offset.
+  for (double beside : {0.0, 0.3}) {
+    Params off;
+    off.bodies_on_way = false;
+    const Scene scene = TurningVehicle(8.0, StraightWay(beside));
+    const Problem pb = BuildProblem(scene, LateralPathsOnWay());
+    const core::HypothesisSet& h = pb.cos[0];
+    ASSERT_TRUE(h.on_way);
+    EXPECT_EQ(h.n_paths, BuildProblem(scene, off).cos[0].n_paths);
+    ASSERT_GT(h.n_paths, 2);
+    const int n_steps = pb.sim.n_steps;
+    std::vector<double> x(n_steps), y(n_steps), yaw(n_steps);
+    double leftmost = 0.0, rightmost = 0.0;
+    for (int path = 0; path < h.n_paths; ++path) {
+      for (int profile = 0; profile < h.n_profiles; ++profile) {
+        core::SimulateHypothesis(h, pb.sim, profile, path, x.data(), y.data(), yaw.data());
+        double px = 100.0, py = 50.0;
+        for (int n = 0; n < n_steps; ++n) {
+          const double t = (n + 1) * pb.sim.tau, dx = x[n] - px, dy = y[n] - py;
+          if (t <= h.steer_latency + 1e-9) {
+            EXPECT_NEAR(y[n], 50.0, 1e-9) << "path " << path << " step " << n;
+          }
+          EXPECT_LE(std::fabs(dy), core::kWayCrabSlope * std::fmax(dx, 0.0) + 1e-9)
+              << "path " << path;
+          if (dx > 1e-6) {
+            EXPECT_NEAR(yaw[n], std::atan2(dy, dx), 1e-9) << "path " << path;
+          }
+          px = x[n];
+          py = y[n];
+        }
+        // Where it ends: the last instant's offset, reached (8 m/s leaves it room enough) on
+        // the profiles that keep it moving.
+        const double last = h.way_lateral[h.n_instants - 1][path];
+        if (x[n_steps - 1] - 100.0 > 10.0) {
+          EXPECT_NEAR(y[n_steps - 1] - 50.0, last, 1e-6) << "path " << path;
+        }
+        leftmost = std::fmax(leftmost, y[n_steps - 1] - 50.0);
+        rightmost = std::fmin(rightmost, y[n_steps - 1] - 50.0);
+      }
+    }
+    EXPECT_GT(leftmost, 0.2);  // paths on both sides of its way
+    EXPECT_LT(rightmost, -0.2);
+    // Scored as without the way: the path along it the likeliest.
+    const int along = PathAlongTheWay(h);
+    ASSERT_GE(along, 0);
+    for (int path = 0; path < h.n_paths; ++path)
+      EXPECT_LE(pb.co_probability[path], pb.co_probability[along] + 1e-12);
+  }
+}
+
+TEST(BodiesOnWay, AStandingVehicleOnItsWayDoesNotCrabSideways) {
+  Scene scene = TurningVehicle(0.0, StraightWay(0.0));
+  const Problem pb = BuildProblem(scene, LateralPathsOnWay());
+  const core::HypothesisSet& h = pb.cos[0];
+  ASSERT_TRUE(h.on_way);
+  std::vector<double> x(pb.sim.n_steps), y(pb.sim.n_steps), yaw(pb.sim.n_steps);
+  // The profile that brakes (it stays where it stands) on every path: never sideways.
+  for (int path = 0; path < h.n_paths; ++path) {
+    core::SimulateHypothesis(h, pb.sim, 0, path, x.data(), y.data(), yaw.data());
+    for (int n = 0; n < pb.sim.n_steps; ++n) {
+      ASSERT_NEAR(x[n], 100.0, 1e-9);
+      ASSERT_NEAR(y[n], 50.0, 1e-9);
+    }
+  }
 }
 
 TEST(BodiesOnWay, WithoutItTheSteeredModelCannotFollowTheTurn) {
@@ -169,6 +279,21 @@ TEST(BodiesOnWay, ATrailerOfAVehicleOnItsWayIsSteeredAlongItsOwnLane) {
   EXPECT_EQ(pb.cos[1].n_paths, 1);  // the vehicle's one path: its lane's centre
   EXPECT_EQ(pb.cos[1].steer_latency, p.steer_latency_s);
   EXPECT_EQ(pb.cos[0].steer_latency, 0.0);
+  // With the tractor's lateral paths beside its way (the experiment) the trailer keeps its
+  // one path on its own lane, and none of the tractor's way data.
+  const Problem lateral = BuildProblem(scene, LateralPathsOnWay());
+  EXPECT_GT(lateral.cos[0].n_paths, 1);
+  EXPECT_EQ(lateral.cos[0].steer_latency, p.steer_latency_s);
+  EXPECT_EQ(lateral.cos[1].n_paths, 1);
+  EXPECT_EQ(lateral.cos[1].steer_latency, p.steer_latency_s);
+  bool any = false;
+  for (int k = 0; k < lateral.cos[0].n_instants; ++k) {
+    for (int l = 0; l < lateral.cos[0].n_lateral; ++l) {
+      any = any || lateral.cos[0].way_lateral[k][l] != 0.0;
+      EXPECT_EQ(lateral.cos[1].way_lateral[k][l], 0.0);
+    }
+  }
+  EXPECT_TRUE(any);  // (so that the check above could fail)
 }
 
 TEST(BodiesOnWay, BadWaysAreOneLineErrorsNamingTheVehicle) {

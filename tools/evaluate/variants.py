@@ -111,6 +111,10 @@ VARIANTS = [
             "ours predicting a vehicle whose body is in a junction like any other, steering "
             "after its lanes, not along its way as SUMO moves it (--no-junction-ways)",
             {"act": "warn", "no-junction-ways": "true"}),
+    Variant("way-lateral-paths",
+            "experiment (ours): a vehicle on its way through a junction gets its lanes' lateral "
+            "samples as paths beside its way, not one path on it (--way-lateral-paths)",
+            {"act": "warn", "way-lateral-paths": "true"}),
     Variant("no-expected-accel-at-once",
             "ours holding a vehicle's current acceleration through the reaction latency also "
             "where its expected one is lower (--no-expected-accel-at-once)",

@@ -276,6 +276,17 @@ struct Params {
    *  map gives from its place and blinker and SUMO from its route. Paper-literal: off.
    *  Driver: --no-junction-ways stops sending the ways. */
   bool bodies_on_way{true};
+  /** An experiment, off: a vehicle on its way (bodies_on_way) keeps the lateral samples of its
+   *  lanes as its paths along the way: from the lateral latency on, each path moves its body
+   *  sideways from where it started beside the way to that sample's offset from its reference
+   *  path by each sample instant (linearly in time, at most tan 0.35 rad per metre driven,
+   *  turned by that angle), scored as any vehicle's paths. Meant for SUMO's sublane model,
+   *  which moves vehicles sideways inside a junction; judged on the held-out families it lost
+   *  two warned body overlaps (one held-out, the overlap it was meant to recover) and a
+   *  held-out violation collision's victim was warned 0.5 s later, for 4 fewer held-out false
+   *  alarms (bench/RESULTS.md, twenty-fifth stop). false: one path, on the way. Driver:
+   *  --way-lateral-paths. */
+  bool way_lateral_paths{false};
   /** The SUMO driver's lane sampling: a lane whose fitted centre line leaves the lane between
    *  its samples (lies farther than half the lane's width from its centre line, as a parabola
    *  through three samples of a short straight and a sharp junction turn does: 3.4 m towards

@@ -197,6 +197,9 @@ TEST(CudaKernelBodies, BodiesOnTheirWayMatchTheCpuBackendExactly) {
   for (unsigned seed = 1; seed <= 4; ++seed)
     scenes.push_back(testing::WithTurningWays(testing::RandomScene(seed, 4, 1, seed % 2 == 0), 3.0));
   ExpectBatchSameAsCpu(scenes, "ways batch");
+  Params lateral;  // the experiment of lateral paths beside the way
+  lateral.way_lateral_paths = true;
+  ExpectBatchSameAsCpu(scenes, "ways batch, lateral paths", lateral);
 }
 
 TEST(CudaKernelBodies, OtherParametersAndDiscriminationScenesMatchTheCpuBackendExactly) {
