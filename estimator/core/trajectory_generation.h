@@ -226,17 +226,19 @@ CRIT_HD void WayPose(const HypothesisSet& h, double front, bool moved, double la
  *  kWayMaxTurnRad), so that it never crabs farther off its way's heading than that. */
 constexpr double kWayCrabSlope = 0.365;
 
-/** The sideways offset path `path` asks of a body on its way at time t: none until the
- *  lateral latency; then, linearly in time, each sample instant's offset (way_lateral) by that
- *  instant; the last one's after it. */
-CRIT_HD double WayLateralTarget(const HypothesisSet& h, int path, double t) {
+/** The sideways offset path `path` asks of a body on its way at time t, `instant` the sample
+ *  instant in force (InstantAt): none until the lateral latency; then, linearly in time, each
+ *  sample instant's offset (way_lateral) by that instant, never one past the instant in force
+ *  (so that a path tree's shared prefix asks the same of every path in its group); the last
+ *  one's after it. */
+CRIT_HD double WayLateralTarget(const HypothesisSet& h, int path, int instant, double t) {
   if (t < h.steer_latency) return 0.0;
   double t0 = h.steer_latency, o0 = 0.0;
-  const int n = h.n_instants < kMaxSampleInstants ? h.n_instants : kMaxSampleInstants;
-  for (int k = 0; k < n; ++k) {
+  const int last = instant < kMaxSampleInstants - 1 ? instant : kMaxSampleInstants - 1;
+  for (int k = 0; k <= last; ++k) {
     const double t1 = h.instant_time[k];
     const double o1 = h.way_lateral[k][SectionOfPath(h, path, k)];
-    if (t < t1) return t1 > t0 ? o0 + (o1 - o0) * (t - t0) / (t1 - t0) : o1;
+    if (t < t1 || k == last) return t1 > t0 ? o0 + (o1 - o0) * Min((t - t0) / (t1 - t0), 1.0) : o1;
     if (t1 > t0) t0 = t1;
     o0 = o1;
   }
@@ -254,7 +256,8 @@ CRIT_HD void WayStep(const HypothesisSet& h, int path, double t, double v_dot, d
   const double ds = s.v * tau + 0.5 * s.ax * tau * tau;
   st->track_x += ds;
   const double reach = kWayCrabSlope * (ds > 0.0 ? ds : 0.0);
-  const double side = Clamp(WayLateralTarget(h, path, t + tau) - st->way_lat, -reach, reach);
+  const double side =
+      Clamp(WayLateralTarget(h, path, st->instant, t + tau) - st->way_lat, -reach, reach);
   st->way_lat += side;
   st->way_crab = side != 0.0 ? std::atan2(side, ds) : 0.0;
   double yaw;

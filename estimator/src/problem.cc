@@ -816,6 +816,10 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
                            RangeOf(type, params), &h, &pb.ego_profile_accel, &pb.ego_profile_slip);
     const bool track = TrackBound(type, params);
     if (track) h.steer_latency = 0.0;
+    // On its way (Params::ego_on_way): its sections become offsets beside the way (SetPaths
+    // stores them), its lateral latency kept.
+    if (!track && params.ego_on_way && params.bodies_on_way && scene.ego.way)
+      PutOnWay(*scene.ego.way, &h);
     const std::vector<PathScore> paths =
         SetPaths(ego_fitted, params, /*combine=*/true, a_ref, &h, &pb.ego_sample_lane, track);
     if (track) PutOnTrack(&h);

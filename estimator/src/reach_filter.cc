@@ -29,7 +29,7 @@ namespace {
 
 // What the bound is made of (EgoReachBoundFrom).
 struct ReachTerms {
-  double mu_g, a_first, a_later, dv_max, stretch, turned, chord;
+  double mu_g, a_first, a_later, dv_max, stretch, turned, chord, way;
 };
 
 ReachTerms TermsOf(const core::HypothesisSet& ego, const core::SimulationConfig& sim,
@@ -59,6 +59,19 @@ ReachTerms TermsOf(const core::HypothesisSet& ego, const core::SimulationConfig&
   // A body on its path (HypothesisSet::body_on_path) starts its model centre up to c / 4
   // from its measured one and stores each pose up to c / 4 from its model centre.
   t.chord = ego.body_on_path && !ego.on_track ? ego.half_length : 0.0;
+  // On its way (HypothesisSet::on_way) its front moves along the way by each step's distance
+  // (at most the bound's travel); its centre, half its length behind the front along its
+  // heading and then moved by its offset from the way (at most |(way_dx, way_dy)| plus the
+  // largest sideways offset a path asks), may turn about the front: at most twice both.
+  t.way = 0.0;
+  if (ego.on_way) {
+    double side = 0.0;
+    for (int k = 0; k < ego.n_instants && k < core::kMaxSampleInstants; ++k) {
+      for (int l = 0; l < ego.n_lateral && l < core::kMaxLateralSamples; ++l)
+        side = std::max(side, std::fabs(ego.way_lateral[k][l]));
+    }
+    t.way = 2.0 * (ego.half_length + std::hypot(ego.way_dx, ego.way_dy) + side);
+  }
   return t;
 }
 
@@ -77,7 +90,7 @@ std::vector<double> EgoReachBoundFrom(const core::HypothesisSet& ego,
     v += t.mu_g * tau;
   }
   for (int n = 1; n <= steps; ++n)
-    bound[n] += t.dv_max * n * ego.position_lead + t.turned + t.chord;
+    bound[n] += t.dv_max * n * ego.position_lead + t.turned + t.chord + t.way;
   return bound;
 }
 
@@ -89,7 +102,7 @@ double EgoReachAfter(const core::HypothesisSet& ego, const core::SimulationConfi
   // sum_{n<m} (v + mu g n tau) tau + (a_first + (m - 1) a_later) tau^2 / 2
   const double travel = v_start * m * tau + t.mu_g * tau * tau * m * (m - 1.0) / 2.0 +
                         (t.a_first + (m - 1.0) * t.a_later) * 0.5 * tau * tau;
-  return t.stretch * travel + t.dv_max * m * ego.position_lead + t.turned + t.chord;
+  return t.stretch * travel + t.dv_max * m * ego.position_lead + t.turned + t.chord + t.way;
 }
 
 std::vector<char> OutOfReach(const Problem& pb, bool simd, ObjectPathsCache* cache) {

@@ -134,6 +134,13 @@ void WriteStop(std::ostream& out, const std::optional<StopLine>& stop) {
   if (stop) out << "stop " << StopReasonName(stop->reason) << ' ' << stop->distance_m << '\n';
 }
 
+void WriteWay(std::ostream& out, const std::optional<Way>& way) {
+  if (!way) return;
+  out << "way " << way->front_m << ' ' << way->back_m << ' ' << way->points.size();
+  for (const Point2& q : way->points) out << ' ' << q.x << ' ' << q.y;
+  out << '\n';
+}
+
 }  // namespace
 
 void WriteScene(std::ostream& out, const Scene& scene) {
@@ -151,6 +158,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
   WriteType(out, scene.ego.type);
   WriteLanes(out, scene.ego.lanes);
   WriteStop(out, scene.ego.stop_line);
+  WriteWay(out, scene.ego.way);
   for (const Vehicle& v : scene.vehicles) {
     out << "vehicle " << v.id;
     WriteState(out, v.state);
@@ -161,11 +169,7 @@ void WriteScene(std::ostream& out, const Scene& scene) {
     if (v.lanes) WriteLanes(out, *v.lanes);
     WriteStop(out, v.stop_line);
     WriteType(out, v.type);
-    if (v.way) {
-      out << "way " << v.way->front_m << ' ' << v.way->back_m << ' ' << v.way->points.size();
-      for (const Point2& q : v.way->points) out << ' ' << q.x << ' ' << q.y;
-      out << '\n';
-    }
+    WriteWay(out, v.way);
     for (const Carriage& c : v.carriages) {
       out << "carriage " << c.x_m << ' ' << c.y_m << ' ' << c.yaw_rad << ' ' << c.yaw_rate_radps
           << ' ' << c.length_m << ' ' << c.width_m << ' ' << (c.lanes ? 1 : 0) << '\n';
@@ -300,7 +304,8 @@ Scene ReadScene(std::istream& in, const std::string& source) {
       vehicle->carriages.push_back(std::move(c));
       lanes = has_lanes ? &*vehicle->carriages.back().lanes : nullptr;
     } else if (kind == "way") {
-      if (!vehicle) throw InputError(r.where + ": 'way' must follow a vehicle");
+      if (!vehicle && !after_ego)
+        throw InputError(r.where + ": 'way' must follow the ego or a vehicle");
       Way w;
       w.front_m = r.Num();
       w.back_m = r.Num();
@@ -313,7 +318,7 @@ Scene ReadScene(std::istream& in, const std::string& source) {
         q.y = r.Num();
         w.points.push_back(q);
       }
-      vehicle->way = std::move(w);
+      (vehicle ? vehicle->way : scene.ego.way) = std::move(w);
     } else if (kind == "footway") {
       if (!pedestrian) throw InputError(r.where + ": 'footway' must follow a pedestrian");
       pedestrian->stays_on_footway = true;

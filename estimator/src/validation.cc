@@ -322,6 +322,7 @@ void ValidateScene(const Scene& scene, const Params& /*params*/) {
   ValidateState("scene.ego.state", scene.ego.state);
   ValidateSize("scene.ego", scene.ego.length_m, scene.ego.width_m, scene.ego.height_m);
   ValidateType("scene.ego.type", scene.ego.type);
+  if (scene.ego.way) ValidateWay("scene.ego.way", *scene.ego.way);
   if (const auto& stop = scene.ego.stop_line) {
     RequireFinite("scene.ego.stop_line.distance_m", stop->distance_m);
     if (stop->distance_m < 0.0)

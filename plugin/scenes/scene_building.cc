@@ -79,6 +79,7 @@ Scene BuildScene(const ObjectSnapshot& ego, const std::vector<const ObjectSnapsh
   scene.ego.lanes = ego.lanes;
   scene.ego.type = ego.type;
   scene.ego.stop_line = ego.stop_line;  // used with Params::ego_stop_obligations
+  scene.ego.way = ego.way;              // used with Params::ego_on_way
   std::vector<const ObjectSnapshot*> sorted = nearby;
   std::sort(sorted.begin(), sorted.end(),
             [](const ObjectSnapshot* a, const ObjectSnapshot* b) { return a->id < b->id; });

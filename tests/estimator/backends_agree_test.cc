@@ -288,6 +288,23 @@ TEST(BackendsAgree, BodiesOnTheirWay) {
   EXPECT_GE(lateral_changed, 1);  // and so do the paths beside them
 }
 
+// The experiment Params::ego_on_way: an ego in a tight turn moves along its way, its path tree
+// beside it, on the scalar path; the CPU's out-of-reach skips (from the ego's reach bound,
+// widened for a body on its way) must leave the reference's pair matrix as it is.
+TEST(BackendsAgree, AnEgoOnItsWay) {
+  Params on;
+  on.ego_on_way = true;
+  int with_collisions = 0, changed = 0;
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    Scene scene = testing::WithTurningWays(testing::RandomScene(seed, 4, 2, seed % 2 == 0), 3.0);
+    scene.ego.way = testing::TurningWay(scene.ego.length_m, 2.0 + seed % 3);
+    with_collisions += ExpectSameResult(scene, on, "ego on way, seed " + std::to_string(seed)) > 0;
+    changed += testing::PCollision(scene, on) != testing::PCollision(scene);
+  }
+  EXPECT_GE(with_collisions, 3);
+  EXPECT_GE(changed, 1);  // the ego's way reaches the backends
+}
+
 // Poses held between the world's steps (Params::collisions_at_world_steps): the fast path skips
 // the box tests of blocks that only repeat poses tested before; the pair matrix must stay the
 // reference's, scalar and SIMD, whether the world's step is a multiple of the blocks or not.

@@ -79,10 +79,12 @@ struct Offsets {
   double travelled{0.0};
 };
 
-// Simulates every hypothesis of the vehicle (set 0; those of path `only` where given) and
-// measures, in its frame, how far its front and back stray from the way.
-Offsets Stray(const Problem& pb, const std::vector<Point2>& way, int only = -1) {
-  const core::HypothesisSet& h = pb.cos[0];
+// Simulates every hypothesis of the set (the vehicle's, set 0, by default; those of path `only`
+// where given) standing at (x0, y0) heading +x, and measures, in its frame, how far its front
+// and back stray from the way.
+Offsets Stray(const Problem& pb, const std::vector<Point2>& way, int only = -1,
+              const core::HypothesisSet* set = nullptr, double x0 = 100.0, double y0 = 50.0) {
+  const core::HypothesisSet& h = set ? *set : pb.cos[0];
   Offsets o;
   std::vector<double> x(pb.sim.n_steps), y(pb.sim.n_steps), yaw(pb.sim.n_steps);
   for (int t = 0; t < h.Trajectories(); ++t) {
@@ -91,13 +93,13 @@ Offsets Stray(const Problem& pb, const std::vector<Point2>& way, int only = -1) 
                              yaw.data());
     for (int n = 0; n < pb.sim.n_steps; ++n) {
       const double ux = std::cos(yaw[n]), uy = std::sin(yaw[n]);
-      const double fx = x[n] - 100.0 + h.half_length * ux, fy = y[n] - 50.0 + h.half_length * uy;
+      const double fx = x[n] - x0 + h.half_length * ux, fy = y[n] - y0 + h.half_length * uy;
       o.front = std::fmax(o.front, DistanceTo(way, fx, fy));
       double back = std::numeric_limits<double>::infinity();
       for (double d = 3.0; d <= 4.5; d += 0.001)
         back = std::fmin(back, DistanceTo(way, fx - d * ux, fy - d * uy));
       o.back = std::fmax(o.back, back);
-      o.travelled = std::fmax(o.travelled, std::hypot(x[n] - 100.0, y[n] - 50.0));
+      o.travelled = std::fmax(o.travelled, std::hypot(x[n] - x0, y[n] - y0));
     }
   }
   return o;
@@ -294,6 +296,50 @@ TEST(BodiesOnWay, ATrailerOfAVehicleOnItsWayIsSteeredAlongItsOwnLane) {
     }
   }
   EXPECT_TRUE(any);  // (so that the check above could fail)
+}
+
+TEST(BodiesOnWay, AnEgoOnItsWayFollowsATightTurnWithItsPathTreeBesideIt) {
+  // The experiment Params::ego_on_way: the ego (at the origin, heading +x, 6 m/s) in a 3 m turn.
+  Scene scene;
+  scene.ego.state.speed_mps = 6.0;
+  scene.ego.length_m = kLength;
+  const Way way = RightTurnWay(kRadius);
+  scene.ego.way = way;
+  Params on;
+  on.ego_on_way = true;
+  const Problem pb = BuildProblem(scene, on);
+  const Problem off = BuildProblem(scene, Params{});
+  ASSERT_TRUE(pb.ego.on_way);
+  EXPECT_FALSE(off.ego.on_way);  // off by default: the way is ignored
+  EXPECT_EQ(pb.ego.n_paths, off.ego.n_paths);  // the same path tree
+  ASSERT_GT(pb.ego.n_paths, 1);
+  // The path whose every section is at its reference keeps front and back on the way, which
+  // the steered ego misses by more than a metre.
+  const int along = PathAlongTheWay(pb.ego);
+  ASSERT_GE(along, 0);
+  const Offsets o = Stray(pb, way.points, along, &pb.ego, 0.0, 0.0);
+  EXPECT_LT(o.front, 0.01);
+  EXPECT_LT(o.back, 0.01);
+  EXPECT_GT(o.travelled, 5.0);
+  EXPECT_GT(Stray(off, way.points, along, &off.ego, 0.0, 0.0).front, 1.0);
+  // Its other paths move beside the way: some end more than 0.5 m from it.
+  double widest = 0.0;
+  std::vector<double> x(pb.sim.n_steps), y(pb.sim.n_steps), yaw(pb.sim.n_steps);
+  for (int path = 0; path < pb.ego.n_paths; ++path) {
+    core::SimulateHypothesis(pb.ego, pb.sim, 0, path, x.data(), y.data(), yaw.data());
+    const int n = pb.sim.n_steps - 1;
+    widest = std::fmax(widest, DistanceTo(way.points, x[n] + pb.ego.half_length * std::cos(yaw[n]),
+                                          y[n] + pb.ego.half_length * std::sin(yaw[n])));
+  }
+  EXPECT_GT(widest, 0.5);
+  // A scene file carries the ego's way.
+  std::stringstream file;
+  WriteScene(file, scene);
+  const Scene back = ReadScene(file, "test");
+  ASSERT_TRUE(back.ego.way.has_value());
+  EXPECT_EQ(back.ego.way->points.size(), way.points.size());
+  EXPECT_EQ(back.ego.way->front_m, way.front_m);
+  EXPECT_EQ(testing::PCollision(scene, on), testing::PCollision(back, on));
 }
 
 TEST(BodiesOnWay, BadWaysAreOneLineErrorsNamingTheVehicle) {

@@ -16,6 +16,7 @@
 #include "core/oriented_box.h"
 #include "core/trajectory_generation.h"
 #include "criticality/estimator.h"
+#include "test_scenes.h"
 
 namespace criticality {
 namespace {
@@ -89,21 +90,40 @@ void ExpectSameRoute(const EscapeRoute& a, const EscapeRoute& b, const std::stri
 
 // An ego alone with the trial's params: every other trial as a simulator's Euler update moves
 // it (poses shifted by the speed change), every third as SUMO draws bodies in a turn (the
-// chord's poses lie off the centre's).
+// chord's poses lie off the centre's), every fourth on its way through a tight turn (with
+// Params::ego_on_way; the way up to 0.6 m beside it, so that it keeps that offset).
 Scene SomeEgoScene(std::mt19937_64& rng, int trial) {
   Scene scene;
   scene.ego = SomeEgo(rng);
   if (trial % 2) scene.euler_update_step_s = Uni(rng, 0.05, 1.0);
   scene.bodies_on_path = trial % 3 == 0;
+  if (trial % 4 == 1) {
+    Way way = testing::TurningWay(scene.ego.length_m, Uni(rng, 1.5, 4.0));
+    const double beside = Uni(rng, -0.6, 0.6);
+    for (Point2& q : way.points) q.y += beside;
+    if (rng() % 2) {  // a left turn
+      for (Point2& q : way.points) q.y = -q.y;
+    }
+    scene.ego.way = way;
+  }
   return scene;
+}
+
+// SomeParams with the ego on its way where it brings one (SomeEgoScene).
+Params SomeEgoParams(std::mt19937_64& rng) {
+  Params p = SomeParams(rng);
+  p.ego_on_way = true;
+  return p;
 }
 
 TEST(ReachFilter, EgoReachBoundHoldsForEverySimulatedEgoHypothesis) {
   std::mt19937_64 rng(20261124);
   double tightest = 1e9;  // smallest margin between the bound and a hypothesis at the horizon
+  int on_way = 0;         // trials with the ego on its way
   for (int trial = 0; trial < 40; ++trial) {
-    const Params params = SomeParams(rng);
+    const Params params = SomeEgoParams(rng);
     const Scene scene = SomeEgoScene(rng, trial);
+    on_way += BuildProblem(scene, params).ego.on_way;
     const internal::Problem pb = BuildProblem(scene, params);
     const std::vector<double> bound = EgoReachBound(pb.ego, pb.sim);
     const int steps = pb.sim.n_steps;
@@ -120,6 +140,7 @@ TEST(ReachFilter, EgoReachBoundHoldsForEverySimulatedEgoHypothesis) {
   }
   // The bound is a bound, not a guess far out: some hypothesis comes within a few metres.
   EXPECT_LT(tightest, 6.0);
+  EXPECT_GE(on_way, 8);
 }
 
 // From a state the simulation reached (a tree node's start, cpu/cpu_backend.h), the bound
@@ -127,9 +148,11 @@ TEST(ReachFilter, EgoReachBoundHoldsForEverySimulatedEgoHypothesis) {
 TEST(ReachFilter, EgoReachBoundFromALaterStateHoldsForTheRestOfEachHypothesis) {
   std::mt19937_64 rng(20261202);
   double tightest = 1e9;
+  int on_way = 0;
   for (int trial = 0; trial < 30; ++trial) {
-    const Params params = SomeParams(rng);
+    const Params params = SomeEgoParams(rng);
     const internal::Problem pb = BuildProblem(SomeEgoScene(rng, trial), params);
+    on_way += pb.ego.on_way;
     const int steps = pb.sim.n_steps;
     std::vector<double> x(steps), y(steps), yaw(steps);
     for (int t = 0; t < pb.ego.Trajectories(); t += 7) {
@@ -157,6 +180,7 @@ TEST(ReachFilter, EgoReachBoundFromALaterStateHoldsForTheRestOfEachHypothesis) {
     }
   }
   EXPECT_LT(tightest, 6.0);  // a bound, not a guess far out
+  EXPECT_GE(on_way, 6);
 }
 
 // A scene whose objects sit around the edge of the ego's reach: at the bound's distance plus

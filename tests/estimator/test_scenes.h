@@ -133,23 +133,26 @@ inline Scene WithTrailers(Scene s, RoadUser user) {
   return s;
 }
 
-/** The scene with every vehicle given a way (Vehicle::way) that turns right ahead of it at
+/** A way (Vehicle::way, Ego::way) that turns right ahead of a body `length_m` long at
  *  `radius` (tighter than a car steers below about 5 m): from 1 m behind its back straight to
  *  its front, a quarter circle in 12 pieces, then 30 m straight on. */
-inline Scene WithTurningWays(Scene s, double radius) {
-  for (Vehicle& v : s.vehicles) {
-    Way w;
-    const double half = 0.5 * v.length_m;
-    w.points.push_back({-half - 1.0, 0.0});
-    for (int k = 0; k <= 12; ++k) {
-      const double a = 1.5707963267948966 * k / 12.0;
-      w.points.push_back({half + radius * std::sin(a), -radius + radius * std::cos(a)});
-    }
-    w.points.push_back({half + radius, -radius - 30.0});
-    w.front_m = 2.0 * half + 1.0;
-    w.back_m = 1.0;
-    v.way = w;
+inline Way TurningWay(double length_m, double radius) {
+  Way w;
+  const double half = 0.5 * length_m;
+  w.points.push_back({-half - 1.0, 0.0});
+  for (int k = 0; k <= 12; ++k) {
+    const double a = 1.5707963267948966 * k / 12.0;
+    w.points.push_back({half + radius * std::sin(a), -radius + radius * std::cos(a)});
   }
+  w.points.push_back({half + radius, -radius - 30.0});
+  w.front_m = 2.0 * half + 1.0;
+  w.back_m = 1.0;
+  return w;
+}
+
+/** The scene with every vehicle given a TurningWay. */
+inline Scene WithTurningWays(Scene s, double radius) {
+  for (Vehicle& v : s.vehicles) v.way = TurningWay(v.length_m, radius);
   return s;
 }
 

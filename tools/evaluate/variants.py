@@ -115,6 +115,10 @@ VARIANTS = [
             "experiment (ours): a vehicle on its way through a junction gets its lanes' lateral "
             "samples as paths beside its way, not one path on it (--way-lateral-paths)",
             {"act": "warn", "way-lateral-paths": "true"}),
+    Variant("ego-on-way",
+            "experiment (ours): an ego whose body is in a junction moves along its way, its "
+            "path tree's sections beside it, not steered after its lanes (--ego-on-way)",
+            {"act": "warn", "ego-on-way": "true"}),
     Variant("no-expected-accel-at-once",
             "ours holding a vehicle's current acceleration through the reaction latency also "
             "where its expected one is lower (--no-expected-accel-at-once)",

@@ -154,23 +154,6 @@ struct StopLine {
   double distance_m{0.0};
 };
 
-struct Ego {
-  std::string id{"ego"};
-  ObjectState state;
-  double length_m{4.5};
-  double width_m{1.8};
-  std::optional<double> height_m;  ///< when known, the vehicle class uses 8 classes instead of 6
-  LaneSet lanes;                   ///< in the ego's local frame
-  /** Its type: the class and limits of its hypotheses. The ego's body is one box (a long ego's
-   *  carriages are not modelled). */
-  VehicleType type;
-  /** Where it must stop, when it must: with Params::ego_stop_obligations, a credible stop there
-   *  becomes its reference (estimator/ALGORITHM.md, "Stop obligations"). */
-  std::optional<StopLine> stop_line;
-};
-
-/** Another vehicle (a collision object, CO). Simulated with the one-track model (by its type:
- *  bicycles with the kinematic single-track model, rail vehicles along their track). */
 /** The line a vehicle's body moves along as the traffic simulation moves it: SUMO keeps the
  *  middle of its front and of its back on the centre lines of its lanes and points it from its
  *  back to its front (MSVehicle::computeAngle), also through a junction, where its lanes turn
@@ -184,6 +167,28 @@ struct Way {
   double back_m{0.0};   ///< ... and of its back (front_m minus its length along the way)
 };
 constexpr int kMaxWayPoints = 48;
+
+struct Ego {
+  std::string id{"ego"};
+  ObjectState state;
+  double length_m{4.5};
+  double width_m{1.8};
+  std::optional<double> height_m;  ///< when known, the vehicle class uses 8 classes instead of 6
+  LaneSet lanes;                   ///< in the ego's local frame
+  /** Its type: the class and limits of its hypotheses. The ego's body is one box (a long ego's
+   *  carriages are not modelled). */
+  VehicleType type;
+  /** Where it must stop, when it must: with Params::ego_stop_obligations, a credible stop there
+   *  becomes its reference (estimator/ALGORITHM.md, "Stop obligations"). */
+  std::optional<StopLine> stop_line;
+  /** Its way through a junction, as another vehicle's (Vehicle::way): with Params::ego_on_way
+   *  (an experiment, off) its hypotheses move along it, each path beside it by its lateral
+   *  samples (estimator/ALGORITHM.md, "Bodies on their way"). */
+  std::optional<Way> way;
+};
+
+/** Another vehicle (a collision object, CO). Simulated with the one-track model (by its type:
+ *  bicycles with the kinematic single-track model, rail vehicles along their track). */
 
 struct Vehicle {
   std::string id;

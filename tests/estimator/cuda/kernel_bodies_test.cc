@@ -200,6 +200,10 @@ TEST(CudaKernelBodies, BodiesOnTheirWayMatchTheCpuBackendExactly) {
   Params lateral;  // the experiment of lateral paths beside the way
   lateral.way_lateral_paths = true;
   ExpectBatchSameAsCpu(scenes, "ways batch, lateral paths", lateral);
+  Params ego;  // the experiment of an ego on its way
+  ego.ego_on_way = true;
+  for (Scene& s : scenes) s.ego.way = testing::TurningWay(s.ego.length_m, 2.5);
+  ExpectBatchSameAsCpu(scenes, "ways batch, ego on its way", ego);
 }
 
 TEST(CudaKernelBodies, OtherParametersAndDiscriminationScenesMatchTheCpuBackendExactly) {
