@@ -238,7 +238,9 @@ CRIT_HD double WayLateralTarget(const HypothesisSet& h, int path, int instant, d
   for (int k = 0; k <= last; ++k) {
     const double t1 = h.instant_time[k];
     const double o1 = h.way_lateral[k][SectionOfPath(h, path, k)];
-    if (t < t1 || k == last) return t1 > t0 ? o0 + (o1 - o0) * Min((t - t0) / (t1 - t0), 1.0) : o1;
+    if (t < t1 || k == last) {
+      return t1 > t0 ? o0 + (o1 - o0) * Min((t - t0) / (t1 - t0), 1.0) : o1;
+    }
     if (t1 > t0) t0 = t1;
     o0 = o1;
   }

@@ -172,7 +172,10 @@ TEST(BodiesOnWay, AVehicleOnItsWayKeepsItsLanesLateralPathsBesideIt) {
     const int n_steps = pb.sim.n_steps;
     std::vector<double> x(n_steps), y(n_steps), yaw(n_steps);
     double leftmost = 0.0, rightmost = 0.0;
+    // How often each conditional check below ran (so that none of them can pass unrun).
+    int latent_checked = 0, heading_checked = 0, paths_reaching_their_offset = 0;
     for (int path = 0; path < h.n_paths; ++path) {
+      bool reached = false;
       for (int profile = 0; profile < h.n_profiles; ++profile) {
         core::SimulateHypothesis(h, pb.sim, profile, path, x.data(), y.data(), yaw.data());
         double px = 100.0, py = 50.0;
@@ -180,11 +183,13 @@ TEST(BodiesOnWay, AVehicleOnItsWayKeepsItsLanesLateralPathsBesideIt) {
           const double t = (n + 1) * pb.sim.tau, dx = x[n] - px, dy = y[n] - py;
           if (t <= h.steer_latency + 1e-9) {
             EXPECT_NEAR(y[n], 50.0, 1e-9) << "path " << path << " step " << n;
+            ++latent_checked;
           }
           EXPECT_LE(std::fabs(dy), core::kWayCrabSlope * std::fmax(dx, 0.0) + 1e-9)
               << "path " << path;
           if (dx > 1e-6) {
             EXPECT_NEAR(yaw[n], std::atan2(dy, dx), 1e-9) << "path " << path;
+            ++heading_checked;
           }
           px = x[n];
           py = y[n];
@@ -194,11 +199,17 @@ TEST(BodiesOnWay, AVehicleOnItsWayKeepsItsLanesLateralPathsBesideIt) {
         const double last = h.way_lateral[h.n_instants - 1][path];
         if (x[n_steps - 1] - 100.0 > 10.0) {
           EXPECT_NEAR(y[n_steps - 1] - 50.0, last, 1e-6) << "path " << path;
+          reached = true;
         }
         leftmost = std::fmax(leftmost, y[n_steps - 1] - 50.0);
         rightmost = std::fmin(rightmost, y[n_steps - 1] - 50.0);
       }
+      paths_reaching_their_offset += reached;
     }
+    const int latent_steps = static_cast<int>(h.steer_latency / pb.sim.tau + 1e-9);
+    EXPECT_GE(latent_checked, h.n_paths * h.n_profiles * latent_steps);
+    EXPECT_GE(heading_checked, h.n_paths * h.n_profiles);
+    EXPECT_EQ(paths_reaching_their_offset, h.n_paths);  // each path on some moving profile
     EXPECT_GT(leftmost, 0.2);  // paths on both sides of its way
     EXPECT_LT(rightmost, -0.2);
     // Scored as without the way: the path along it the likeliest.
