@@ -815,13 +815,15 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
         SetVehicleProfiles(params, a_ref, scene.ego.state.accel_mps2,  // its driver's latency
                            RangeOf(type, params), &h, &pb.ego_profile_accel, &pb.ego_profile_slip);
     const bool track = TrackBound(type, params);
-    if (track) h.steer_latency = 0.0;
-    // On its way (Params::ego_on_way): its sections become offsets beside the way (SetPaths
-    // stores them), its lateral latency kept.
-    if (!track && params.ego_on_way && params.bodies_on_way && scene.ego.way)
-      PutOnWay(*scene.ego.way, &h);
+    // On its way (Params::ego_on_way) where the way passes it: as any vehicle on its way, one
+    // path along it, or (Params::way_lateral_paths) its sections as offsets beside the way
+    // (SetPaths stores them), its lateral latency kept.
+    const bool on_way = !track && params.ego_on_way && params.bodies_on_way && scene.ego.way &&
+                        PutOnWay(*scene.ego.way, &h);
+    const bool one_path = track || (on_way && !params.way_lateral_paths);
+    if (one_path) h.steer_latency = 0.0;
     const std::vector<PathScore> paths =
-        SetPaths(ego_fitted, params, /*combine=*/true, a_ref, &h, &pb.ego_sample_lane, track);
+        SetPaths(ego_fitted, params, /*combine=*/true, a_ref, &h, &pb.ego_sample_lane, one_path);
     if (track) PutOnTrack(&h);
     AppendProbabilities(profiles, paths, params, &pb.ego_probability);
     pb.ego_lane_centre = ego_fitted.own->Centre();

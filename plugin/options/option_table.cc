@@ -234,8 +234,8 @@ void OptionTable::ModelChoices() {
       "ego-on-way", po::bool_switch(&raw.ego_on_way),
       "experimental (ours, off by default: fewer false alarms but warned collisions lost on "
       "the held-out networks, bench/RESULTS.md): an ego whose body is in a junction moves "
-      "along its way as other vehicles do, its path tree's sections as offsets beside the "
-      "way (estimator Params::ego_on_way)")(
+      "along its way as other vehicles do, on one path (with --way-lateral-paths: its path "
+      "tree's sections as offsets beside the way; estimator Params::ego_on_way)")(
       "no-sumo-box", po::bool_switch(&raw.no_sumo_box),
       "ablation (ours): a vehicle's box is its length from its front along SUMO's angle, "
       "reaching past its back in a tight turn; by default it is SUMO's box, from its front to "

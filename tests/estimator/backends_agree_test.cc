@@ -288,21 +288,29 @@ TEST(BackendsAgree, BodiesOnTheirWay) {
   EXPECT_GE(lateral_changed, 1);  // and so do the paths beside them
 }
 
-// The experiment Params::ego_on_way: an ego in a tight turn moves along its way, its path tree
-// beside it, on the scalar path; the CPU's out-of-reach skips (from the ego's reach bound,
-// widened for a body on its way) must leave the reference's pair matrix as it is.
+// The experiment Params::ego_on_way: an ego in a tight turn moves along its way, on one path
+// or (with way_lateral_paths) its path tree beside it, on the scalar path; the CPU's
+// out-of-reach skips (from the ego's reach bound, widened for a body on its way) must leave
+// the reference's pair matrix as it is.
 TEST(BackendsAgree, AnEgoOnItsWay) {
-  Params on;
-  on.ego_on_way = true;
-  int with_collisions = 0, changed = 0;
-  for (unsigned seed = 1; seed <= 8; ++seed) {
-    Scene scene = testing::WithTurningWays(testing::RandomScene(seed, 4, 2, seed % 2 == 0), 3.0);
-    scene.ego.way = testing::TurningWay(scene.ego.length_m, 2.0 + seed % 3);
-    with_collisions += ExpectSameResult(scene, on, "ego on way, seed " + std::to_string(seed)) > 0;
-    changed += testing::PCollision(scene, on) != testing::PCollision(scene);
+  for (const bool lateral : {false, true}) {
+    Params on;
+    on.ego_on_way = true;
+    on.way_lateral_paths = lateral;
+    const std::string tag = lateral ? "ego on way, lateral paths, seed " : "ego on way, seed ";
+    int with_collisions = 0, changed = 0;
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+      Scene scene =
+          testing::WithTurningWays(testing::RandomScene(seed, 4, 2, seed % 2 == 0), 3.0);
+      scene.ego.way = testing::TurningWay(scene.ego.length_m, 2.0 + seed % 3);
+      with_collisions += ExpectSameResult(scene, on, tag + std::to_string(seed)) > 0;
+      Params others_only = on;  // the other vehicles' paths as `on`, the ego steered
+      others_only.ego_on_way = false;
+      changed += testing::PCollision(scene, on) != testing::PCollision(scene, others_only);
+    }
+    EXPECT_GE(with_collisions, 3) << tag;
+    EXPECT_GE(changed, 1) << tag;  // the ego's way reaches the backends
   }
-  EXPECT_GE(with_collisions, 3);
-  EXPECT_GE(changed, 1);  // the ego's way reaches the backends
 }
 
 // Poses held between the world's steps (Params::collisions_at_world_steps): the fast path skips

@@ -309,8 +309,9 @@ TEST(BodiesOnWay, ATrailerOfAVehicleOnItsWayIsSteeredAlongItsOwnLane) {
   EXPECT_TRUE(any);  // (so that the check above could fail)
 }
 
-TEST(BodiesOnWay, AnEgoOnItsWayFollowsATightTurnWithItsPathTreeBesideIt) {
-  // The experiment Params::ego_on_way: the ego (at the origin, heading +x, 6 m/s) in a 3 m turn.
+TEST(BodiesOnWay, AnEgoOnItsWayFollowsATightTurnOnOnePathAsOtherVehiclesDo) {
+  // The experiment Params::ego_on_way alone: the ego (at the origin, heading +x, 6 m/s) in a
+  // 3 m turn gets one path, along its way, without lateral latency, as any vehicle on its way.
   Scene scene;
   scene.ego.state.speed_mps = 6.0;
   scene.ego.length_m = kLength;
@@ -318,6 +319,41 @@ TEST(BodiesOnWay, AnEgoOnItsWayFollowsATightTurnWithItsPathTreeBesideIt) {
   scene.ego.way = way;
   Params on;
   on.ego_on_way = true;
+  const Problem pb = BuildProblem(scene, on);
+  const Problem off = BuildProblem(scene, Params{});
+  ASSERT_TRUE(pb.ego.on_way);
+  EXPECT_EQ(pb.ego.n_paths, 1);
+  EXPECT_GT(off.ego.n_paths, 1);  // steered after its lanes: the whole tree
+  EXPECT_EQ(pb.ego.steer_latency, 0.0);
+  EXPECT_EQ(pb.ego_probability.size(), static_cast<size_t>(pb.ego.n_profiles));
+  // Every hypothesis (one per profile) keeps front and back on the way (within 1 cm) and goes
+  // round the turn.
+  const Offsets o = Stray(pb, way.points, -1, &pb.ego, 0.0, 0.0);
+  EXPECT_LT(o.front, 0.01);
+  EXPECT_LT(o.back, 0.01);
+  EXPECT_GT(o.travelled, 5.0);
+  // With the lateral paths along the way the tree comes back (the next test); the steered
+  // ego's path with every section at its reference misses the way by more than a metre.
+  Params lateral = on;
+  lateral.way_lateral_paths = true;
+  const Problem tree = BuildProblem(scene, lateral);
+  EXPECT_EQ(tree.ego.n_paths, off.ego.n_paths);
+  const int along = PathAlongTheWay(tree.ego);
+  ASSERT_GE(along, 0);
+  EXPECT_GT(Stray(off, way.points, along, &off.ego, 0.0, 0.0).front, 1.0);
+}
+
+TEST(BodiesOnWay, AnEgoOnItsWayWithLateralPathsFollowsATightTurnWithItsPathTreeBesideIt) {
+  // Params::ego_on_way with way_lateral_paths: the ego (at the origin, heading +x, 6 m/s) in a
+  // 3 m turn keeps its path tree, each path's sections as offsets beside the way.
+  Scene scene;
+  scene.ego.state.speed_mps = 6.0;
+  scene.ego.length_m = kLength;
+  const Way way = RightTurnWay(kRadius);
+  scene.ego.way = way;
+  Params on;
+  on.ego_on_way = true;
+  on.way_lateral_paths = true;
   const Problem pb = BuildProblem(scene, on);
   const Problem off = BuildProblem(scene, Params{});
   ASSERT_TRUE(pb.ego.on_way);

@@ -109,10 +109,12 @@ Scene SomeEgoScene(std::mt19937_64& rng, int trial) {
   return scene;
 }
 
-// SomeParams with the ego on its way where it brings one (SomeEgoScene).
+// SomeParams with the ego on its way where it brings one (SomeEgoScene), on one path or with
+// its path tree beside the way.
 Params SomeEgoParams(std::mt19937_64& rng) {
   Params p = SomeParams(rng);
   p.ego_on_way = true;
+  p.way_lateral_paths = rng() % 2 == 0;  // its path tree beside the way, or one path on it
   return p;
 }
 

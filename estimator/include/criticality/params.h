@@ -289,13 +289,13 @@ struct Params {
   bool way_lateral_paths{false};
   /** An experiment, off: the ego, where it brings its way (Ego::way: the SUMO driver sends it
    *  while its body is in a junction, as for other vehicles), moves along it as bodies_on_way
-   *  moves other vehicles, its path tree's sections as sideways offsets beside its way (the
-   *  mechanism of way_lateral_paths, with every combination of sections), its profiles as
-   *  before. Traced (bench/RESULTS.md, twenty-fifth stop): 10 of the 15 held-out sublane false
+   *  moves other vehicles: on one path along it, without lateral latency (its hypotheses are
+   *  its profiles), or, with way_lateral_paths too, its path tree's sections as sideways
+   *  offsets beside its way (that mechanism, with every combination of sections). Traced (bench/RESULTS.md, twenty-fifth stop): 10 of the 15 held-out sublane false
    *  alarms at 0.1 s had the ego in a turn of 0.9-2.6 m radius, which its steering (4.9 m at
    *  0.5 rad) cannot drive, predicted out on a wide arc into the traffic it turns across.
-   *  Judged (same stop): a third to a half fewer false alarms on every set, but warned
-   *  collisions and overlaps lost, so off. Reads which lane of the junction it is on, which
+   *  Judged (same stop, with its path tree beside the way): a third to a half fewer false
+   *  alarms on every set, but warned collisions and overlaps lost, so off. Reads which lane of the junction it is on, which
    *  its own route gives. Driver: --ego-on-way. */
   bool ego_on_way{false};
   /** The SUMO driver's lane sampling: a lane whose fitted centre line leaves the lane between

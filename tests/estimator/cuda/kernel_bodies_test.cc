@@ -204,6 +204,8 @@ TEST(CudaKernelBodies, BodiesOnTheirWayMatchTheCpuBackendExactly) {
   ego.ego_on_way = true;
   for (Scene& s : scenes) s.ego.way = testing::TurningWay(s.ego.length_m, 2.5);
   ExpectBatchSameAsCpu(scenes, "ways batch, ego on its way", ego);
+  ego.way_lateral_paths = true;  // its path tree beside the way
+  ExpectBatchSameAsCpu(scenes, "ways batch, ego on its way, lateral paths", ego);
 }
 
 TEST(CudaKernelBodies, OtherParametersAndDiscriminationScenesMatchTheCpuBackendExactly) {
