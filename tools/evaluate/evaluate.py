@@ -81,12 +81,15 @@ def parse_args(argv):
                     "where a seeded 30 %% of cars and trucks ignore right of way, seeds 5 and 6, "
                     "8 runs; violations-full: seeds 5-9, 5 and 7 tuning, 20 runs; sublane: "
                     "the sublane grids and spider of bench/RESULTS.md, 0.1 s steps, g1 tuning, "
-                    "h4 and sp held-out, 3 runs of 10-25 minutes), every vehicle an ego, "
+                    "h4, sp and g7 held-out, 4 runs of 10-25 minutes), every vehicle an ego, "
                     "tuning and held-out "
                     "sets side by side; default variants: ours and observable")
     ap.add_argument("--family-step", type=float, choices=network_family.STEPS_S,
                     help="with --family: only the networks at this SUMO step length (s), e.g. "
                     "0.1 for a change that acts at short steps only (default: both, 1 and 0.1)")
+    ap.add_argument("--family-nets", default="",
+                    help="with --family: only these of its networks, comma-separated by network "
+                    "name as in the tables (e.g. sgrid1,sgrid7; default: all of the profile)")
     ap.add_argument("--family-time-limit", type=int, default=3600,
                     help="seconds one family run may take before it is stopped (default 3600)")
     ap.add_argument("--report-only", action="store_true",
@@ -111,6 +114,12 @@ def run_family(a, chosen, info):
     OUT."""
     out = os.path.abspath(a.out)
     nets = network_family.family(a.family, a.family_step)
+    if a.family_nets:
+        try:
+            nets = network_family.only(nets, a.family_nets)
+        except ValueError as e:
+            log(f"evaluate: --family-nets: {e} of --family {a.family}")
+            return 2
     if not nets:
         log(f"evaluate: --family {a.family} has no networks at {a.family_step:g} s steps: "
             "leave out --family-step or choose another")

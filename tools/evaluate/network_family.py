@@ -33,6 +33,10 @@ the held-out `sgrid4`, "h4") and a 6-arm spider of two-lane streets with cars an
 held-out `sspider31`, "sp"). Their configurations are those of the earlier runs (collisions in
 junctions not checked), so that their figures stay comparable.
 
+A fresh held-out sublane grid (added 2026-12-07, twenty-sixth stop, before any run on it,
+because h4 and sp had been traced): `sgrid7`, the same grid with randomTrips seed 7. The
+option --family-nets of evaluate.sh runs some of a profile's networks only.
+
 Generation is deterministic: netgenerate and randomTrips with fixed seeds; a network folder is
 rebuilt when the commands that made it change (FAMILY_COMMANDS.txt in it)."""
 
@@ -77,6 +81,7 @@ _SGRID_CARS = ["--end", "120", "--period", "0.4", "--fringe-factor", "5", "--val
 SUBLANE_NETS = {
     ("sgrid", 1): ("tuning", 150.0, {"cars": _SGRID_CARS + ["--seed", "1"]}),
     ("sgrid", 4): ("held-out", 150.0, {"cars": _SGRID_CARS + ["--seed", "4"]}),
+    ("sgrid", 7): ("held-out", 150.0, {"cars": _SGRID_CARS + ["--seed", "7"]}),
     ("sspider", 31): ("held-out", 130.0, {
         "cars": ["--end", "100", "--period", "0.5", "--seed", "31", "--validate"],
         "bikes": ["--end", "100", "--period", "5", "--seed", "32", "--prefix", "bike",
@@ -136,6 +141,19 @@ def family(profile="full", step_s=None):
                 if SUBLANE_STEP_S in steps]
     kinds = VIOLATION_KINDS if profile.startswith("violations") else KINDS
     return [Network(k, s, dt) for k in kinds for s in PROFILES[profile] for dt in steps]
+
+
+def only(nets, names):
+    """The networks of `nets` named in `names` (comma-separated network names, e.g.
+    "sgrid1,sgrid7", both step lengths of each), in their order; ValueError naming those not
+    among them."""
+    wanted = [w.strip() for w in names.split(",") if w.strip()]
+    known = sorted({n.net_name for n in nets})
+    unknown = [w for w in wanted if w not in known]
+    if unknown or not wanted:
+        raise ValueError(f"{', '.join(unknown) or repr(names)}: not among the networks "
+                         f"({', '.join(known)})")
+    return [n for n in nets if n.net_name in wanted]
 
 
 def netgenerate_args(kind, seed):

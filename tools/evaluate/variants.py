@@ -116,8 +116,8 @@ VARIANTS = [
             "samples as paths beside its way, not one path on it (--way-lateral-paths)",
             {"act": "warn", "way-lateral-paths": "true"}),
     Variant("ego-on-way",
-            "experiment (ours): an ego whose body is in a junction moves along its way, its "
-            "path tree's sections beside it, not steered after its lanes (--ego-on-way)",
+            "experiment (ours): an ego whose body is in a junction moves along its way on one "
+            "path, as other vehicles do, not steered after its lanes (--ego-on-way)",
             {"act": "warn", "ego-on-way": "true"}),
     Variant("no-expected-accel-at-once",
             "ours holding a vehicle's current acceleration through the reaction latency also "

@@ -444,12 +444,13 @@ class NetworkFamilyTest(unittest.TestCase):
             network_family.family("quick", 0.5)
 
     def test_the_sublane_profile_is_the_earlier_sublane_protocol(self):
-        # g1 (tuning), h4 and sp (held-out) of bench/RESULTS.md, at 0.1 s steps only, with
+        # g1 (tuning), h4, sp and g7 (held-out) of bench/RESULTS.md, at 0.1 s steps only, with
         # SUMO's sublane model and their own traffic. Catches a net in the wrong set, a 1 s
         # run, the family's default traffic or junction checks in their configuration.
         nets = network_family.family("sublane")
         self.assertEqual([(n.name, n.split, n.end_s) for n in nets],
                          [("sgrid1_0.1s", "tuning", 150.0), ("sgrid4_0.1s", "held-out", 150.0),
+                          ("sgrid7_0.1s", "held-out", 150.0),
                           ("sspider31_0.1s", "held-out", 130.0)])
         self.assertEqual(network_family.family("sublane", 0.1), nets)
         self.assertEqual(network_family.family("sublane", 1.0), [])
@@ -458,9 +459,24 @@ class NetworkFamilyTest(unittest.TestCase):
         self.assertNotIn("collision.check-junctions", cfg)
         self.assertIn("collision.check-junctions",
                       network_family.sumocfg_text(network_family.Network("grid", 1, 0.1), []))
-        self.assertEqual(list(network_family.net_traffic_args(nets[2], 130.0)), ["cars", "bikes"])
+        self.assertEqual(list(network_family.net_traffic_args(nets[3], 130.0)), ["cars", "bikes"])
+        self.assertIn("7", network_family.net_traffic_args(nets[2], 150.0)["cars"])
         self.assertIn("4", network_family.net_traffic_args(nets[1], 150.0)["cars"])
         self.assertFalse(any(n.sublane for n in network_family.family("full")))
+
+    def test_family_nets_picks_networks_by_name_and_names_unknown_ones(self):
+        # Catches a filter that keeps every network, drops a step length or the profile's
+        # order, or ignores a misspelt name.
+        nets = network_family.family("sublane")
+        self.assertEqual([n.name for n in network_family.only(nets, "sgrid7, sgrid1")],
+                         ["sgrid1_0.1s", "sgrid7_0.1s"])
+        quick = network_family.family("quick")
+        grid1 = network_family.only(quick, "grid1")
+        self.assertEqual(sorted(n.step_s for n in grid1), [0.1, 1.0])
+        with self.assertRaisesRegex(ValueError, "sgrid9: not among the networks"):
+            network_family.only(nets, "sgrid1,sgrid9")
+        with self.assertRaises(ValueError):
+            network_family.only(nets, " , ")
 
     def test_the_seed_draws_the_network_and_the_traffic(self):
         self.assertNotEqual(network_family.netgenerate_args("grid", 1),
