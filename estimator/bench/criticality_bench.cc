@@ -44,11 +44,27 @@ struct Options {
   int cos{-1};
   int batch{0};
   std::string preset{"default"};
+  std::vector<std::string> experiments;
   bool discrimination{false};
   std::string save_scenes;
   std::string paths_json;
   int paths{12};
 };
+
+// Params with the experiments named by --experiment (the driver's options of the same names,
+// so that a scene recorded under them replays as it was estimated).
+void ApplyExperiments(const std::vector<std::string>& names, Params* p) {
+  for (const std::string& name : names) {
+    if (name == "way-lateral-paths") {
+      p->way_lateral_paths = true;
+    } else if (name == "ego-on-way") {
+      p->ego_on_way = true;
+    } else {
+      throw InputError("--experiment " + name +
+                       ": unknown (known: way-lateral-paths, ego-on-way)");
+    }
+  }
+}
 
 // The estimator's options from the command line's, for the named backend.
 EstimatorOptions BackendOptions(const Options& opt, const std::string& backend) {
@@ -566,6 +582,9 @@ int main(int argc, char** argv) {
       "preset", po::value(&opt.preset)->default_value(opt.preset),
       "parameter set: default (drivable hypotheses, naturalistic scoring) or paper-literal (the "
       "first implementation, for comparison)")(
+      "experiment", po::value(&opt.experiments)->composing(),
+      "turn on an experiment that is off by default, as the driver's option of the same name "
+      "(repeatable): way-lateral-paths, ego-on-way (replay a scene recorded with it)")(
       "discrimination", po::bool_switch(&opt.discrimination),
       "run the discrimination benchmark: designed scenes labelled safe-close or critical, with "
       "p_cra, p_reference, unavoidability and the best escape route of each")(
@@ -593,6 +612,7 @@ int main(int argc, char** argv) {
 
     Params params = ParamsPreset(opt.preset);
     params.profiles = opt.profiles;
+    ApplyExperiments(opt.experiments, &params);
     if (opt.discrimination) return Discrimination(params, opt);
     if (!opt.fleet.empty()) return Fleet(params, opt);
     EstimatorOptions eopt = BackendOptions(opt, opt.backend);

@@ -63,6 +63,18 @@ one_by_one=$(for f in "$data"/*.scene; do
 done | awk '{s += $1} END {printf "%.12e", s / NR}')
 check "--fleet mean p_cra ($fleet_mean) is the scenes' one by one ($one_by_one)" \
   awk -v a="$fleet_mean" -v b="$one_by_one" 'BEGIN {d = a - b; exit !(d < 1e-12 && d > -1e-12 && b > 0)}'
+# --experiment: a scene recorded with an ego on its way (a violator turning left across the
+# car it hit 1.3 s later; generated violations network gv8, 0.1 s steps) replays under the
+# driver's experiment of that name; without it the ego is steered, and p differs.
+way_scene="$data/ego_way/violator_turning_left.scene"
+p_of() { "$bench" --scene-file "$way_scene" --repeat 1 --warmup 0 --json "$@" | tail -n 1 |
+  sed 's/.*"p_collision":\([^,]*\),.*/\1/'; }
+steered=$(p_of); on_way=$(p_of --experiment ego-on-way)
+tree=$(p_of --experiment ego-on-way --experiment way-lateral-paths)
+check "--experiment ego-on-way changes p ($steered -> $on_way)" \
+  awk -v a="$steered" -v b="$on_way" 'BEGIN {exit !(a > 0.9 && b > 0 && b < a - 0.05)}'
+check "--experiment is repeatable ($on_way, with way-lateral-paths $tree)" \
+  awk -v a="$on_way" -v b="$tree" 'BEGIN {exit !(b > 0 && a != b)}'
 report=$("$bench" --scene S1 --repeat 1 --warmup 0 --report)
 check "--report shows p_reference and unavoidability" grep -q "unavoidability" <<<"$report"
 check "--report shows escape routes with their manoeuvre" grep -q "max lateral accel" <<<"$report"
@@ -78,6 +90,7 @@ expect_error() {  # expect_error CODE PATTERN ARGS...
 expect_error 2 "params.profiles = 2" --profiles 2
 expect_error 2 "scene = 'S9'" --scene S9
 expect_error 2 "backend = 'gpu'" --backend gpu
+expect_error 2 "experiment nope: unknown" --experiment nope
 expect_error 2 "repeat" --repeat 0
 expect_error 2 "preset = 'fast'" --preset fast
 expect_error 2 "--fleet '/nonexistent': not a folder" --fleet /nonexistent
