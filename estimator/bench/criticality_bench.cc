@@ -59,9 +59,11 @@ void ApplyExperiments(const std::vector<std::string>& names, Params* p) {
       p->way_lateral_paths = true;
     } else if (name == "ego-on-way") {
       p->ego_on_way = true;
+    } else if (name == "euler-stops") {
+      p->euler_stops = true;
     } else {
       throw InputError("--experiment " + name +
-                       ": unknown (known: way-lateral-paths, ego-on-way)");
+                       ": unknown (known: way-lateral-paths, ego-on-way, euler-stops)");
     }
   }
 }
@@ -584,7 +586,7 @@ int main(int argc, char** argv) {
       "first implementation, for comparison)")(
       "experiment", po::value(&opt.experiments)->composing(),
       "turn on an experiment that is off by default, as the driver's option of the same name "
-      "(repeatable): way-lateral-paths, ego-on-way (replay a scene recorded with it)")(
+      "(repeatable): way-lateral-paths, ego-on-way, euler-stops (replay a scene recorded with it)")(
       "discrimination", po::bool_switch(&opt.discrimination),
       "run the discrimination benchmark: designed scenes labelled safe-close or critical, with "
       "p_cra, p_reference, unavoidability and the best escape route of each")(

@@ -102,6 +102,9 @@ struct HypothesisSet {
    *  step): the poses in between repeat the pose of the last step it looks at, the pose now
    *  until its first (Params::collisions_at_world_steps). */
   int pose_hold_steps{0};
+  /** With held poses: a body whose speed is 0 at a step the world looks at keeps the pose of
+   *  the world's previous step (Params::euler_stops; HoldPose). */
+  bool hold_stops{false};
   /** Its box is centred on the chord of its path (Scene::bodies_on_path): each stored pose's
    *  centre lies PathSagitta(h, course curvature) toward the turn's centre from the model's,
    *  its heading the model's, and the model's centre starts that far outside the measured one

@@ -343,11 +343,13 @@ CRIT_HD void StorePose(const HypothesisSet& h, const StepContext& c, const Simul
 }
 
 /** HypothesisSet::pose_hold_steps: after step n, the pose the world would see. At the steps
- *  it looks at, the pose just stored, kept in `held`; in between, the last one kept. */
-CRIT_HD void HoldPose(int hold_steps, int n, double* held_x, double* held_y, double* held_yaw,
-                      double* x, double* y, double* yaw) {
+ *  it looks at, the pose just stored, kept in `held`, unless `stays` (HypothesisSet::
+ *  hold_stops and a speed of 0 there: the world's update moves it by 0); in between, the last
+ *  one kept. */
+CRIT_HD void HoldPose(int hold_steps, int n, bool stays, double* held_x, double* held_y,
+                      double* held_yaw, double* x, double* y, double* yaw) {
   if (hold_steps <= 1) return;
-  if ((n + 1) % hold_steps == 0) {
+  if ((n + 1) % hold_steps == 0 && !stays) {
     *held_x = *x;
     *held_y = *y;
     *held_yaw = *yaw;
@@ -434,7 +436,8 @@ CRIT_HD void VehicleStep(const HypothesisSet& h, const SimulationConfig& cfg, in
   StorePose(h, *ctx, *st, cy * cb - sy * sb, sy * cb + cy * sb, x, y, yaw);
   st->pose_x = *x;
   st->pose_y = *y;
-  HoldPose(h.pose_hold_steps, n, &st->held_x, &st->held_y, &st->held_yaw, x, y, yaw);
+  HoldPose(h.pose_hold_steps, n, h.hold_stops && s.v == 0.0, &st->held_x, &st->held_y,
+           &st->held_yaw, x, y, yaw);
 }
 
 /** Advances a VEHICLE hypothesis (profile, path) over steps [n_begin, n_end) from `st`,
@@ -485,7 +488,8 @@ CRIT_HD void SimulateHypothesis(const HypothesisSet& h, const SimulationConfig& 
       const size_t at = static_cast<size_t>(n) * stride;
       double sx = px, sy = py, syaw = heading;
       if (h.position_lead > 0.0) ShiftAlongCourse(h.position_lead, v, v0, ch, sh, &sx, &sy);
-      HoldPose(h.pose_hold_steps, n, &held_x, &held_y, &held_yaw, &sx, &sy, &syaw);
+      HoldPose(h.pose_hold_steps, n, h.hold_stops && v == 0.0, &held_x, &held_y, &held_yaw, &sx,
+               &sy, &syaw);
       x[at] = sx;
       y[at] = sy;
       yaw[at] = syaw;

@@ -246,13 +246,17 @@ Derivative<V> OneTrack(D d, const core::VehicleParams& p, V v, V beta, V yr, V s
 
 // Step n's poses of lanes [first, first + count) into the span (c, s unless bc is null). With
 // held poses (HypothesisSet::pose_hold_steps, core::HoldPose), a step the world does not look at
-// stores each lane's held pose, and a step it looks at keeps the pose as the lane's held one.
+// stores each lane's held pose, and a step it looks at keeps the pose as the lane's held one,
+// except for a lane whose speed bv[l] is 0 there with HypothesisSet::hold_stops (it stays).
 HWY_INLINE void StorePoses(SiblingSpan* span, int first, int count, int n, const double* bx,
                            const double* by, const double* byaw, const double* bc,
-                           const double* bs) {
+                           const double* bs, const double* bv) {
   const int hold = span->h->pose_hold_steps;
-  if (hold > 1 && (n + 1) % hold != 0) {
+  const bool seen = hold <= 1 || (n + 1) % hold == 0;
+  const bool stops = hold > 1 && seen && span->h->hold_stops;
+  if (!seen || stops) {
     for (int l = 0; l < count; ++l) {
+      if (seen && bv[l] != 0.0) continue;  // moving at a step the world looks at: below
       core::SimulationState& st = span->state[first + l];
       st.pose_x = bx[l];  // where the step left it (core::VehicleStep)
       st.pose_y = by[l];
@@ -264,9 +268,10 @@ HWY_INLINE void StorePoses(SiblingSpan* span, int first, int count, int n, const
         span->s[first + l][n] = st.held_s;
       }
     }
-    return;
+    if (!seen) return;
   }
   for (int l = 0; l < count; ++l) {
+    if (stops && bv[l] == 0.0) continue;  // it stays where the world last saw it (above)
     span->state[first + l].pose_x = bx[l];
     span->state[first + l].pose_y = by[l];
     if (hold > 1) {
@@ -636,7 +641,7 @@ void SimulateChunk(D d, SiblingSpan* span, int first, int count) {
       hn::StoreU(wx, d, bx);
       hn::StoreU(wy, d, by);
       hn::StoreU(wyaw, d, byaw);
-      StorePoses(span, first, count, n, bx, by, byaw, heading_trig ? bc : nullptr, bs);
+      StorePoses(span, first, count, n, bx, by, byaw, heading_trig ? bc : nullptr, bs, L.v);
       if (can_stand && brakes_for_good && StandsStill(d, nv, nax, nay, nyr) &&
           (h.pose_hold_steps <= 1 ||
            StandsAtHeldPose(span, first, count, bx, by, byaw, heading_trig ? bc : nullptr, bs))) {

@@ -1041,7 +1041,11 @@ Problem BuildProblem(const Scene& scene, const Params& params) {
     const int hold = static_cast<int>(std::lround(ratio));
     if (hold > 1 && std::fabs(ratio - hold) < 1e-6 * ratio) {
       pb.ego.pose_hold_steps = hold;
-      for (core::HypothesisSet& h : pb.cos) h.pose_hold_steps = hold;
+      pb.ego.hold_stops = params.euler_stops;
+      for (core::HypothesisSet& h : pb.cos) {
+        h.pose_hold_steps = hold;
+        h.hold_stops = params.euler_stops;
+      }
     }
   }
   // Where the world puts bodies in a turn (Scene::bodies_on_path).

@@ -192,6 +192,7 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_stop_at_once) p.stop_obligation_at_once = false;
   if (raw.way_lateral_paths) p.way_lateral_paths = true;
   if (raw.ego_on_way) p.ego_on_way = true;
+  if (raw.euler_stops) p.euler_stops = true;
   if (raw.release_braking) {
     p.release_unexplained_braking = true;
     o->scenes.braking_causes = true;

@@ -267,11 +267,6 @@ void OptionTable::ModelChoices() {
       "leader, its stop line and its lane's curve ask is expected to release its brake (its "
       "reference holds its speed, or what those ask) instead of braking on for the whole "
       "horizon (estimator Params::release_unexplained_braking)")(
-      "no-world-step-collisions", po::bool_switch(&raw.no_world_step_collisions),
-      "ablation (ours): a pair of hypotheses collides wherever it overlaps, not only at SUMO's "
-      "steps, where SUMO looks for collisions (by default, with SUMO's Euler position update, "
-      "the estimator reads SUMO's step length for this; estimator "
-      "Params::collisions_at_world_steps)")(
       "no-expected-accel-at-once", po::bool_switch(&raw.no_expected_accel_at_once),
       "ablation (ours): another vehicle's hypotheses hold its current acceleration through "
       "the reaction latency also where its expected (car-following) acceleration is lower; by "
@@ -288,7 +283,22 @@ void OptionTable::ModelChoices() {
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)");
   LaneChoices(&m);
+  WorldStepChoices(&m);
   all_.add(m);
+}
+
+void OptionTable::WorldStepChoices(po::options_description* m) {
+  m->add_options()(
+      "no-world-step-collisions", po::bool_switch(&raw.no_world_step_collisions),
+      "ablation (ours): a pair of hypotheses collides wherever it overlaps, not only at SUMO's "
+      "steps, where SUMO looks for collisions (by default, with SUMO's Euler position update, "
+      "the estimator reads SUMO's step length for this; estimator "
+      "Params::collisions_at_world_steps)")(
+      "euler-stops", po::bool_switch(&raw.euler_stops),
+      "experimental (ours, off by default): a hypothesis whose speed is 0 at one of SUMO's steps "
+      "stays where SUMO's previous step left it, as SUMO's Euler update leaves a vehicle that "
+      "stops within a step (by default it is put half a step's speed change back, which for a "
+      "stop inside a step lies behind that place; estimator Params::euler_stops)");
 }
 
 void OptionTable::LaneChoices(po::options_description* m) {

@@ -28,9 +28,8 @@ struct RawOptions {
   bool no_progress{false}, no_shortcut{false}, no_crossing_obligations{false},
       no_crossing_stops{false}, no_yield_stops{false}, no_heading_hold{false},
       no_way_heading{false}, junction_shapes{false}, no_junction_shapes{false}, bent_bodies{false},
-      bodies_on_path{false}, no_sumo_box{false}, no_junction_ways{false}, way_lateral_paths{false}, ego_on_way{false},
-      release_braking{false},
-      no_world_step_collisions{false}, ego_stops{false}, internal_junction_yield{false},
+      bodies_on_path{false}, no_sumo_box{false}, no_junction_ways{false}, way_lateral_paths{false},
+      ego_on_way{false}, release_braking{false}, no_world_step_collisions{false}, euler_stops{false}, ego_stops{false}, internal_junction_yield{false},
       no_internal_junction_yield{false}, no_simd{false}, no_pipeline{false};
 };
 
@@ -51,6 +50,8 @@ class OptionTable {
   void ModelChoices();  ///< the driver's and estimator's own rules: ablations, experiments
   /** ModelChoices' rules on how lanes are sampled and followed. */
   void LaneChoices(boost::program_options::options_description* m);
+  /** ModelChoices' rules on SUMO's steps (its Euler position update, where it looks). */
+  void WorldStepChoices(boost::program_options::options_description* m);
   void Output(DriverOptions* o);
 
   boost::program_options::options_description all_;

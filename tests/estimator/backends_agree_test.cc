@@ -345,6 +345,31 @@ TEST(BackendsAgree, PosesHeldBetweenTheWorldsSteps) {
   }
 }
 
+// Params::euler_stops with held poses: a hypothesis whose speed is 0 at a world step keeps the
+// pose of the world's previous step, on the scalar path, the SIMD lanes (StorePoses) and the
+// reference alike; it must change p on some scene (so that the comparison could fail).
+TEST(BackendsAgree, StoppedBodiesStayAtTheWorldsSteps) {
+  Params stops;
+  stops.euler_stops = true;
+  int with_collisions = 0, changed = 0;
+  for (const double world_step : {1.0, 0.5}) {
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+      Scene scene = testing::RandomScene(seed, 4, 2, seed % 2 == 0);
+      scene.euler_update_step_s = world_step;
+      const std::string what = "seed " + std::to_string(seed) + ", world step " +
+                                std::to_string(world_step) + ", stopped bodies stay";
+      with_collisions += ExpectSameResult(scene, stops, what) > 0;
+      EstimatorOptions ref_opt;
+      ref_opt.backend = Backend::kReference;
+      const double simd_p = testing::PCollision(scene, stops);
+      EXPECT_NEAR(Estimator(stops, ref_opt).Estimate(scene).p_collision, simd_p, 1e-6) << what;
+      changed += simd_p != testing::PCollision(scene);
+    }
+  }
+  EXPECT_GE(with_collisions, 3);
+  EXPECT_GE(changed, 1);
+}
+
 TEST(BackendsAgree, AllDiscriminationScenes) {
   for (const bench::DiscriminationScene& d : bench::DiscriminationScenes()) {
     ExpectSameResult(d.scene, Params{}, d.name);

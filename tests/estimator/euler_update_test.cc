@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "core/trajectory_generation.h"
@@ -202,6 +203,94 @@ TEST(EulerUpdate, HeldPosesRepeatTheLastPoseTheWorldSees) {
   EXPECT_EQ(hy[48], 1.0);
   EXPECT_NEAR(hy[49], 1.0 + 1.4, 0.05);
   EXPECT_EQ(hy[98], hy[49]);
+}
+
+// Params::euler_stops (HypothesisSet::hold_stops): a vehicle that stops inside one of the
+// world's steps stands, at that step and after, where the world's previous step left it, as
+// SUMO's update (x += v_new dt) leaves it. Without it the shift (v - v0) dt / 2, exact only for a
+// speed that changes linearly between the world's steps, puts it behind that place: behind
+// where it stands now for a stop within the first step. Catches a hold that ignores the stop, a
+// stop that keeps the wrong step's pose, or one that holds a body still moving.
+TEST(EulerUpdate, ABodyThatStopsWithinAWorldStepStaysWhereTheWorldLeftIt) {
+  core::SimulationConfig cfg;
+  cfg.tau = 0.02;
+  cfg.n_steps = 150;  // 3 s
+  std::vector<double> x(150), y(150), yaw(150);
+  // v0, decel: 5.2 m/s at 9 m/s^2 stops after 0.58 s (SUMO: 0 m); 13 m/s at 9 m/s^2 after
+  // 1.44 s (SUMO: 4 m after the first step, then no more); 13.5 at 4.5 stops at 3 s exactly,
+  // on a world step (the shift alone is SUMO's: 9, 13.5, 13.5 m).
+  struct Case {
+    double v0, decel;
+  };
+  for (const Case c : {Case{5.2, 9.0}, Case{13.0, 9.0}, Case{13.5, 4.5}}) {
+    core::HypothesisSet h = BrakingVehicle(c.v0, c.decel);
+    h.position_lead = 0.5;
+    h.pose_hold_steps = 50;
+    const std::vector<double> sumo = SumoEulerBraking(c.v0, c.decel, 1.0, 3);
+    h.hold_stops = true;
+    core::SimulateHypothesis(h, cfg, 0, 0, x.data(), y.data(), yaw.data());
+    const std::string what = "v0 " + std::to_string(c.v0) + ", decel " + std::to_string(c.decel);
+    for (int k = 1; k <= 3; ++k) EXPECT_NEAR(x[k * 50 - 1], sumo[k - 1], 0.05) << what << ", " << k;
+    for (int n = 0; n < 150; ++n) EXPECT_GE(x[n], 0.0) << what << ", step " << n;
+    // Without it: the same where the speed changes linearly up to the stop, else behind.
+    h.hold_stops = false;
+    std::vector<double> old(150);
+    core::SimulateHypothesis(h, cfg, 0, 0, old.data(), y.data(), yaw.data());
+    if (c.decel == 4.5) {
+      for (int n = 0; n < 150; ++n) EXPECT_EQ(old[n], x[n]) << what << ", step " << n;
+    } else {
+      EXPECT_LT(old[149], sumo[2] - 0.5) << what;
+    }
+  }
+  // The first case goes back behind where it stands without the hold: 1.1 m.
+  core::HypothesisSet h = BrakingVehicle(5.2, 9.0);
+  h.position_lead = 0.5;
+  h.pose_hold_steps = 50;
+  core::SimulateHypothesis(h, cfg, 0, 0, x.data(), y.data(), yaw.data());
+  EXPECT_LT(x[49], -1.0);
+  // A walker stopping within a step stays too (1.4 m/s at 2 m/s^2 stops after 0.7 s).
+  core::HypothesisSet w;
+  w.model = core::MotionModelKind::kPedestrian;
+  w.X_WL = core::Pose2{1.0, 1.0, 0.0};
+  w.v0 = 1.4;
+  w.max_speed = 2.7;
+  w.n_profiles = 1;
+  w.profile_target[0] = -2.0;
+  w.n_paths = 1;
+  w.heading[0] = 0.5 * M_PI;
+  w.position_lead = 0.5;
+  w.pose_hold_steps = 50;
+  w.hold_stops = true;
+  core::SimulateHypothesis(w, cfg, 0, 0, x.data(), y.data(), yaw.data());
+  for (int n = 0; n < 150; ++n) EXPECT_EQ(y[n], 1.0) << "walker, step " << n;
+  w.hold_stops = false;
+  core::SimulateHypothesis(w, cfg, 0, 0, x.data(), y.data(), yaw.data());
+  EXPECT_LT(y[49], 1.0 - 0.1);  // behind where it stands
+}
+
+// The estimator with Params::euler_stops: at 1 s steps the ego (5 m/s) brakes hard (8 m/s^2,
+// its driver's expectation). Without the hold, every ego hypothesis that stops within the
+// first step is put back behind where the ego stands (up to 0.9 m), and the car standing
+// behind it, 0.5 m from its back, is "hit".
+TEST(EulerUpdate, AnEgoThatStopsWithinAStepDoesNotBackIntoTheCarBehind) {
+  Scene s;
+  s.ego.state.speed_mps = 5.0;
+  s.ego.state.accel_mps2 = -8.0;
+  s.ego.state.expected_accel_mps2 = -8.0;
+  s.ego.length_m = 5.0;
+  Vehicle behind;
+  behind.id = "behind";
+  behind.length_m = 5.0;
+  behind.state.x_m = -5.5;  // 0.5 m between the bumpers, standing
+  s.vehicles.push_back(behind);
+  s.euler_update_step_s = 1.0;
+  Params off, on;
+  on.euler_stops = true;
+  const Result without = Estimator{off}.Estimate(s);
+  const Result with = Estimator{on}.Estimate(s);
+  EXPECT_GT(without.p_collision, 0.1);
+  EXPECT_LT(with.p_collision, 0.01);
+  EXPECT_LT(with.p_collision, without.p_collision);
 }
 
 // A car crosses the ego's way at 15 m/s, 8 m ahead of the ego (at 9 m/s) and 10 m to its side:

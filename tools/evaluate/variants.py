@@ -119,6 +119,11 @@ VARIANTS = [
             "experiment (ours): an ego whose body is in a junction moves along its way on one "
             "path, as other vehicles do, not steered after its lanes (--ego-on-way)",
             {"act": "warn", "ego-on-way": "true"}),
+    Variant("euler-stops",
+            "experiment (ours): a hypothesis whose speed is 0 at one of SUMO's steps stays "
+            "where SUMO's previous step left it, not half a step's speed change back "
+            "(--euler-stops)",
+            {"act": "warn", "euler-stops": "true"}),
     Variant("no-expected-accel-at-once",
             "ours holding a vehicle's current acceleration through the reaction latency also "
             "where its expected one is lower (--no-expected-accel-at-once)",

@@ -431,6 +431,15 @@ struct Params {
    *  warned before. Reads what only the simulator knows (its step); driver
    *  --no-world-step-collisions turns it off. No effect on scenes without an Euler step. */
   bool collisions_at_world_steps{true};
+  /** With held poses (collisions_at_world_steps, an Euler step a whole number of steps): a
+   *  body whose speed is 0 at one of the world's steps stays where the world's previous step
+   *  left it, as SUMO's update does (x += v_new dt moves it by 0). The shift (v - v0) dt / 2
+   *  is SUMO's position only while the speed changes linearly between the world's steps; a
+   *  hypothesis that stops inside a step was put behind that place, and one that stops within
+   *  the first step behind where it stands now (1.1 m back for 5.2 m/s braking at 9 m/s^2 with
+   *  1 s steps; traced at the twenty-sixth stop, bench/RESULTS.md). An experiment: driver
+   *  --euler-stops. */
+  bool euler_stops{false};
   /** See curve_speed_reference. 5.5 m/s^2: the lateral acceleration from which SUMO's
    *  netconvert sets turning speeds (junctions.limit-turn-speed), above what drivers choose in
    *  comfort (about 0.3-0.4 g), so that only a speed that is too high for any normal driving

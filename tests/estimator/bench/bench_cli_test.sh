@@ -90,7 +90,8 @@ expect_error() {  # expect_error CODE PATTERN ARGS...
 expect_error 2 "params.profiles = 2" --profiles 2
 expect_error 2 "scene = 'S9'" --scene S9
 expect_error 2 "backend = 'gpu'" --backend gpu
-expect_error 2 "experiment nope: unknown" --experiment nope
+expect_error 2 "experiment nope: unknown (known: way-lateral-paths, ego-on-way, euler-stops)" \
+  --experiment nope
 expect_error 2 "repeat" --repeat 0
 expect_error 2 "preset = 'fast'" --preset fast
 expect_error 2 "--fleet '/nonexistent': not a folder" --fleet /nonexistent

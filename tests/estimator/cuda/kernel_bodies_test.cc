@@ -192,6 +192,20 @@ TEST(CudaKernelBodies, VehiclesThatLeaveTheSceneMatchTheCpuBackendExactly) {
   ExpectBatchSameAsCpu(scenes, "leaving batch");
 }
 
+TEST(CudaKernelBodies, HeldPosesAndStoppedBodiesMatchTheCpuBackendExactly) {
+  // The world's 1 s and 0.5 s steps (held poses), with and without Params::euler_stops.
+  std::vector<Scene> scenes;
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    Scene s = testing::RandomScene(seed, 4, 2, seed % 2 == 0);
+    s.euler_update_step_s = seed % 2 ? 1.0 : 0.5;
+    scenes.push_back(s);
+  }
+  ExpectBatchSameAsCpu(scenes, "held poses batch");
+  Params stops;
+  stops.euler_stops = true;
+  ExpectBatchSameAsCpu(scenes, "held poses batch, stopped bodies stay", stops);
+}
+
 TEST(CudaKernelBodies, BodiesOnTheirWayMatchTheCpuBackendExactly) {
   std::vector<Scene> scenes;
   for (unsigned seed = 1; seed <= 4; ++seed)
