@@ -124,6 +124,10 @@ VARIANTS = [
             "where SUMO's previous step left it, not half a step's speed change back "
             "(--euler-stops)",
             {"act": "warn", "euler-stops": "true"}),
+    Variant("ego-way-euler-stops",
+            "experiments (ours) together: the ego on its way and hypotheses that stop within "
+            "one of SUMO's steps staying there (--ego-on-way --euler-stops)",
+            {"act": "warn", "ego-on-way": "true", "euler-stops": "true"}),
     Variant("no-expected-accel-at-once",
             "ours holding a vehicle's current acceleration through the reaction latency also "
             "where its expected one is lower (--no-expected-accel-at-once)",
