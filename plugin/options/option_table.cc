@@ -295,7 +295,8 @@ void OptionTable::WorldStepChoices(po::options_description* m) {
       "the estimator reads SUMO's step length for this; estimator "
       "Params::collisions_at_world_steps)")(
       "euler-stops", po::bool_switch(&raw.euler_stops),
-      "experimental (ours, off by default): a hypothesis whose speed is 0 at one of SUMO's steps "
+      "experimental (ours, off by default: no gain on the held-out networks, bench/RESULTS.md): "
+      "a hypothesis whose speed is 0 at one of SUMO's steps "
       "stays where SUMO's previous step left it, as SUMO's Euler update leaves a vehicle that "
       "stops within a step (by default it is put half a step's speed change back, which for a "
       "stop inside a step lies behind that place; estimator Params::euler_stops)");
