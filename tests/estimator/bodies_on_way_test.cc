@@ -309,14 +309,20 @@ TEST(BodiesOnWay, ATrailerOfAVehicleOnItsWayIsSteeredAlongItsOwnLane) {
   EXPECT_TRUE(any);  // (so that the check above could fail)
 }
 
-TEST(BodiesOnWay, AnEgoOnItsWayFollowsATightTurnOnOnePathAsOtherVehiclesDo) {
-  // The experiment Params::ego_on_way alone: the ego (at the origin, heading +x, 6 m/s) in a
-  // 3 m turn gets one path, along its way, without lateral latency, as any vehicle on its way.
+// The ego alone at the origin, heading +x at 6 m/s, on `way`.
+Scene EgoInATightTurn(const Way& way) {
   Scene scene;
   scene.ego.state.speed_mps = 6.0;
   scene.ego.length_m = kLength;
-  const Way way = RightTurnWay(kRadius);
   scene.ego.way = way;
+  return scene;
+}
+
+TEST(BodiesOnWay, AnEgoOnItsWayFollowsATightTurnOnOnePathAsOtherVehiclesDo) {
+  // The experiment Params::ego_on_way alone: the ego (at the origin, heading +x, 6 m/s) in a
+  // 3 m turn gets one path, along its way, without lateral latency, as any vehicle on its way.
+  const Way way = RightTurnWay(kRadius);
+  const Scene scene = EgoInATightTurn(way);
   Params on;
   on.ego_on_way = true;
   const Problem pb = BuildProblem(scene, on);
@@ -346,11 +352,8 @@ TEST(BodiesOnWay, AnEgoOnItsWayFollowsATightTurnOnOnePathAsOtherVehiclesDo) {
 TEST(BodiesOnWay, AnEgoOnItsWayWithLateralPathsFollowsATightTurnWithItsPathTreeBesideIt) {
   // Params::ego_on_way with way_lateral_paths: the ego (at the origin, heading +x, 6 m/s) in a
   // 3 m turn keeps its path tree, each path's sections as offsets beside the way.
-  Scene scene;
-  scene.ego.state.speed_mps = 6.0;
-  scene.ego.length_m = kLength;
   const Way way = RightTurnWay(kRadius);
-  scene.ego.way = way;
+  const Scene scene = EgoInATightTurn(way);
   Params on;
   on.ego_on_way = true;
   on.way_lateral_paths = true;

@@ -112,18 +112,25 @@ TEST(EulerUpdate, BrakingThroughATurnStaysOnTheWayItDrives) {
   }
 }
 
+// A walker at (x, y) heading 90 degrees at v0, changing its speed at `accel` (one profile, one
+// heading).
+core::HypothesisSet Walker(double x, double y, double v0, double accel) {
+  core::HypothesisSet h;
+  h.model = core::MotionModelKind::kPedestrian;
+  h.X_WL = core::Pose2{x, y, 0.0};
+  h.v0 = v0;
+  h.max_speed = 2.7;
+  h.n_profiles = 1;
+  h.profile_target[0] = accel;
+  h.n_paths = 1;
+  h.heading[0] = 0.5 * M_PI;
+  return h;
+}
+
 TEST(EulerUpdate, PedestrianShiftIsAlongItsHeading) {
   // A walker at 1.2 m/s, heading 90 degrees, stopping at 1.2 m/s^2: SUMO's update with 1 s
   // steps leaves it where it stands (its speed after the step is 0); continuous motion 0.6 m on.
-  core::HypothesisSet h;
-  h.model = core::MotionModelKind::kPedestrian;
-  h.X_WL = core::Pose2{3.0, 4.0, 0.0};
-  h.v0 = 1.2;
-  h.max_speed = 2.7;
-  h.n_profiles = 1;
-  h.profile_target[0] = -1.2;
-  h.n_paths = 1;
-  h.heading[0] = 0.5 * M_PI;
+  core::HypothesisSet h = Walker(3.0, 4.0, 1.2, -1.2);
   core::SimulationConfig cfg;
   cfg.tau = 0.02;
   cfg.n_steps = 100;
@@ -190,14 +197,7 @@ TEST(EulerUpdate, HeldPosesRepeatTheLastPoseTheWorldSees) {
   }
   EXPECT_GT(x[49], x[0] + 5.0);  // it moves: the hold is seen
   // A walker holds too.
-  core::HypothesisSet w;
-  w.model = core::MotionModelKind::kPedestrian;
-  w.X_WL = core::Pose2{1.0, 1.0, 0.0};
-  w.v0 = 1.4;
-  w.max_speed = 2.7;
-  w.n_profiles = 1;
-  w.n_paths = 1;
-  w.heading[0] = 0.5 * M_PI;
+  core::HypothesisSet w = Walker(1.0, 1.0, 1.4, 0.0);
   w.pose_hold_steps = 50;
   core::SimulateHypothesis(w, cfg, 0, 0, hx.data(), hy.data(), hyaw.data());
   EXPECT_EQ(hy[48], 1.0);
@@ -249,15 +249,7 @@ TEST(EulerUpdate, ABodyThatStopsWithinAWorldStepStaysWhereTheWorldLeftIt) {
   core::SimulateHypothesis(h, cfg, 0, 0, x.data(), y.data(), yaw.data());
   EXPECT_LT(x[49], -1.0);
   // A walker stopping within a step stays too (1.4 m/s at 2 m/s^2 stops after 0.7 s).
-  core::HypothesisSet w;
-  w.model = core::MotionModelKind::kPedestrian;
-  w.X_WL = core::Pose2{1.0, 1.0, 0.0};
-  w.v0 = 1.4;
-  w.max_speed = 2.7;
-  w.n_profiles = 1;
-  w.profile_target[0] = -2.0;
-  w.n_paths = 1;
-  w.heading[0] = 0.5 * M_PI;
+  core::HypothesisSet w = Walker(1.0, 1.0, 1.4, -2.0);
   w.position_lead = 0.5;
   w.pose_hold_steps = 50;
   w.hold_stops = true;
