@@ -208,6 +208,7 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_internal_junction_yield) o->scenes.internal_junction_yield = false;
   if (raw.no_heading_hold) o->scenes.heading_hold = false;
   if (raw.no_way_heading) o->scenes.way_heading = false;
+  if (raw.junction_chord_heading) o->scenes.junction_chord_heading = true;
   if (raw.no_lane_heading_yaw_rate) o->scenes.lane_heading_yaw_rate = false;
   if (raw.lane_change_target) o->scenes.lane_change_target = true;
   if (raw.no_lane_change_yaw_rate) o->scenes.lane_change_yaw_rate = false;

@@ -190,14 +190,6 @@ void OptionTable::ModelChoices() {
       "experiment: no yield line for a vehicle at a link without priority while SUMO has a foe "
       "approaching it (simulator knowledge: the link's has_foe); stop signs, red and yellow "
       "lights stay")(
-      "no-heading-hold", po::bool_switch(&raw.no_heading_hold),
-      "ablation (ours): take every vehicle's heading as SUMO reports it, also where it turns "
-      "faster than the vehicle can between two steps (at a junction's corners; by default "
-      "held up to 0.5 s: plugin/README.md, \"Headings\")")(
-      "no-way-heading", po::bool_switch(&raw.no_way_heading),
-      "ablation (ours): take SUMO's angle also just after a lane change past a junction, where "
-      "it points from the body's back, still on the old lane, to its front in the new one (by "
-      "default the heading of the way behind the new lane: plugin/README.md, \"Headings\")")(
       "no-lane-heading-yaw-rate", po::bool_switch(&raw.no_lane_heading_yaw_rate),
       "ablation (ours): at steps up to 0.25 s take every vehicle's yaw rate from its last "
       "step's heading change (0 or a spike along a junction's lane of straight pieces); by "
@@ -283,8 +275,27 @@ void OptionTable::ModelChoices() {
       "ablation (ours): the reference hypothesis keeps the current acceleration (the paper's) "
       "instead of the braking each vehicle's leader asks for (estimator/ALGORITHM.md)");
   LaneChoices(&m);
+  HeadingChoices(&m);
   WorldStepChoices(&m);
   all_.add(m);
+}
+
+void OptionTable::HeadingChoices(po::options_description* m) {
+  m->add_options()(
+      "no-heading-hold", po::bool_switch(&raw.no_heading_hold),
+      "ablation (ours): take every vehicle's heading as SUMO reports it, also where it turns "
+      "faster than the vehicle can between two steps (at a junction's corners; by default "
+      "held up to 0.5 s: plugin/README.md, \"Headings\")")(
+      "no-way-heading", po::bool_switch(&raw.no_way_heading),
+      "ablation (ours): take SUMO's angle also just after a lane change past a junction, where "
+      "it points from the body's back, still on the old lane, to its front in the new one (by "
+      "default the heading of the way behind the new lane: plugin/README.md, \"Headings\")")(
+      "junction-chord-heading", po::bool_switch(&raw.junction_chord_heading),
+      "experimental (ours, off by default): a vehicle whose body is in a junction (front or "
+      "back on an internal lane) is read with the heading of its lanes' chord from its back to "
+      "its front, as SUMO places the body, instead of SUMO's angle of the internal lane's "
+      "piece at its front (which jumps at the piece's corners) or the heading held over such a "
+      "jump (plugin/README.md, \"Headings\")");
 }
 
 void OptionTable::WorldStepChoices(po::options_description* m) {

@@ -29,7 +29,8 @@ struct RawOptions {
       no_crossing_stops{false}, no_yield_stops{false}, no_heading_hold{false},
       no_way_heading{false}, junction_shapes{false}, no_junction_shapes{false}, bent_bodies{false},
       bodies_on_path{false}, no_sumo_box{false}, no_junction_ways{false}, way_lateral_paths{false},
-      ego_on_way{false}, release_braking{false}, no_world_step_collisions{false}, euler_stops{false}, ego_stops{false}, internal_junction_yield{false},
+      ego_on_way{false}, release_braking{false}, no_world_step_collisions{false}, euler_stops{false},
+      junction_chord_heading{false}, ego_stops{false}, internal_junction_yield{false},
       no_internal_junction_yield{false}, no_simd{false}, no_pipeline{false};
 };
 
@@ -50,6 +51,8 @@ class OptionTable {
   void ModelChoices();  ///< the driver's and estimator's own rules: ablations, experiments
   /** ModelChoices' rules on how lanes are sampled and followed. */
   void LaneChoices(boost::program_options::options_description* m);
+  /** ModelChoices' rules on the headings vehicles are read with. */
+  void HeadingChoices(boost::program_options::options_description* m);
   /** ModelChoices' rules on SUMO's steps (its Euler position update, where it looks). */
   void WorldStepChoices(boost::program_options::options_description* m);
   void Output(DriverOptions* o);

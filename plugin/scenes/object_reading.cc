@@ -7,6 +7,7 @@
 #include "plugin/network/way_behind.h"
 #include "plugin/scenes/carriages.h"
 #include "plugin/scenes/footway.h"
+#include "plugin/scenes/junction_way.h"
 #include "plugin/scenes/road_users.h"
 #include "plugin/scenes/stop_lines.h"
 #include "plugin/sumo/sumo_conventions.h"
@@ -232,8 +233,18 @@ ObjectSnapshot ObjectReader::Vehicle(const SumoObject& o, double sumo_time_s) {
     if (const std::optional<double> yaw = ChangedLanesHeading(way, o.length_m))
       angle_deg = YawToNavigationDeg(*yaw);
   }
+  // In a junction (SceneConfig::junction_chord_heading): the chord of its lanes from its back to
+  // its front, as SUMO places the body; not held (it turns as the lanes do).
+  std::optional<double> chord;
+  if (config_.junction_chord_heading && !o.lane.empty() && !s.parked &&
+      BodyInJunction(*network_, o.lane, o.lane_position_m, o.length_m, o.route, o.route_index)) {
+    chord = ChordYaw(LineBehind(*network_, o.lane, o.lane_position_m, o.length_m + 1.0, o.route,
+                                o.route_index),
+                     o.length_m);
+    if (chord) angle_deg = YawToNavigationDeg(*chord);
+  }
   bool held = false;
-  const double heading = HeadingOf(o, angle_deg, sumo_time_s, &held);
+  const double heading = chord ? *chord : HeadingOf(o, angle_deg, sumo_time_s, &held);
   const Pose2 c =
       one_box || !config_.bent_bodies
           ? FrontBumperToCentre(o.x_m, o.y_m, held ? YawToNavigationDeg(heading) : angle_deg,

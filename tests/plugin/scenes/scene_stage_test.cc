@@ -621,6 +621,39 @@ double HeadingPastTheTurn(const SceneConfig& config, const std::string& lane, do
   return s.ego.state.yaw_rad * 180.0 / kPi;
 }
 
+// SceneConfig::junction_chord_heading: a 5 m car in the right turn above, its front 5 m along
+// the internal lane at (1.6, 3.4), its back 5 m behind along its lanes at (0, 0); SUMO's angle
+// is its front piece's (east). With the experiment it is read along the chord from its back to
+// its front (64.8 degrees), its centre half its length behind the front along that; without,
+// SUMO's angle. Catches a chord taken from the wrong length or lanes, a centre not moved with
+// it, or the experiment acting outside a junction.
+TEST(SceneStage, InAJunctionTheChordOfItsLanesIsTheHeadingWithTheExperiment) {
+  auto read = [](const SceneConfig& config, const std::string& lane, double position_m,
+                 double x, double y, double angle_deg) {
+    FakeSumoWorld w;
+    w.AddEdge("N", 0, -100, 0, 0, 1);
+    w.AddLaneShape(":J_0", {Point2{0, 0}, Point2{0, 3.4}, Point2{5, 3.4}});
+    w.AddEdge("E", 5, 5, 105, 5, 2);
+    w.AddLinkVia("N_0", "E_0", ":J_0_0", "r");
+    w.AddLink(":J_0_0", "E_0");
+    SumoObject& car = w.AddVehicle("car", x, y, angle_deg, 8.0, lane, position_m, {"N", "E"});
+    car.route_index = lane[0] == ':' ? 0 : 1;
+    SceneStage stage(config, w.StepLength(), true, &w, &w);
+    return stage.Run(Observe(w, {"car"})).scenes.at(0).ego.state;
+  };
+  SceneConfig chord;
+  chord.junction_chord_heading = true;
+  const double expected = std::atan2(3.4, 1.6);
+  const ObjectState on = read(chord, ":J_0_0", 5.0, 1.6, 3.4, 90.0);
+  EXPECT_NEAR(on.yaw_rad, expected, 1e-9);
+  EXPECT_NEAR(on.x_m, 1.6 - 2.5 * std::cos(expected), 1e-9);
+  EXPECT_NEAR(on.y_m, 3.4 - 2.5 * std::sin(expected), 1e-9);
+  const ObjectState off = read(SceneConfig{}, ":J_0_0", 5.0, 1.6, 3.4, 90.0);
+  EXPECT_NEAR(off.yaw_rad, 0.0, 1e-9);  // SUMO's angle: east
+  // Out of the junction (front 20 m into E, back on it too): SUMO's angle either way.
+  EXPECT_NEAR(read(chord, "E_0", 20.0, 25.0, 3.4, 80.0).yaw_rad, 10.0 * kPi / 180.0, 1e-9);
+}
+
 TEST(SceneStage, AfterALaneChangeJustPastAJunctionTheHeadingIsTheWayOfItsNewLane) {
   // The car came through the turn into E_0 and changed into E_1 within one step, 1 m into E:
   // SUMO's back stays on the turn 4 m before its end, at (1, 3.4), so SUMO's angle points from
