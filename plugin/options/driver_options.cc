@@ -208,7 +208,10 @@ void Estimation(const RawOptions& raw, const po::variables_map& vm, DriverOption
   if (raw.no_internal_junction_yield) o->scenes.internal_junction_yield = false;
   if (raw.no_heading_hold) o->scenes.heading_hold = false;
   if (raw.no_way_heading) o->scenes.way_heading = false;
-  if (raw.junction_chord_heading) o->scenes.junction_chord_heading = true;
+  if (raw.junction_chord_heading && raw.no_junction_chord_heading)
+    Bad("--junction-chord-heading and --no-junction-chord-heading: choose one (the first is the "
+        "default)");
+  if (raw.no_junction_chord_heading) o->scenes.junction_chord_heading = false;
   if (raw.no_lane_heading_yaw_rate) o->scenes.lane_heading_yaw_rate = false;
   if (raw.lane_change_target) o->scenes.lane_change_target = true;
   if (raw.no_lane_change_yaw_rate) o->scenes.lane_change_yaw_rate = false;

@@ -290,12 +290,13 @@ void OptionTable::HeadingChoices(po::options_description* m) {
       "ablation (ours): take SUMO's angle also just after a lane change past a junction, where "
       "it points from the body's back, still on the old lane, to its front in the new one (by "
       "default the heading of the way behind the new lane: plugin/README.md, \"Headings\")")(
+      "no-junction-chord-heading", po::bool_switch(&raw.no_junction_chord_heading),
+      "ablation (ours): read a vehicle whose body is in a junction with SUMO's angle (of the "
+      "internal lane's piece at its front, which jumps at the piece's corners) or the heading "
+      "held over such a jump; by default with its lanes' chord from its back to its front, as "
+      "SUMO places the body (plugin/README.md, \"Headings\")")(
       "junction-chord-heading", po::bool_switch(&raw.junction_chord_heading),
-      "experimental (ours, off by default): a vehicle whose body is in a junction (front or "
-      "back on an internal lane) is read with the heading of its lanes' chord from its back to "
-      "its front, as SUMO places the body, instead of SUMO's angle of the internal lane's "
-      "piece at its front (which jumps at the piece's corners) or the heading held over such a "
-      "jump (plugin/README.md, \"Headings\")");
+      "the default since 2026-12-08; accepted so that campaign files of the experiment run");
 }
 
 void OptionTable::WorldStepChoices(po::options_description* m) {

@@ -124,11 +124,11 @@ VARIANTS = [
             "where SUMO's previous step left it, not half a step's speed change back "
             "(--euler-stops)",
             {"act": "warn", "euler-stops": "true"}),
-    Variant("junction-chord-heading",
-            "experiment (ours): a vehicle whose body is in a junction is read with the heading "
-            "of its lanes' chord from back to front, not SUMO's angle or a held heading "
-            "(--junction-chord-heading)",
-            {"act": "warn", "junction-chord-heading": "true"}),
+    Variant("no-junction-chord-heading",
+            "ours reading a vehicle whose body is in a junction with SUMO's angle or a heading "
+            "held over its jumps, not its lanes' chord from back to front "
+            "(--no-junction-chord-heading)",
+            {"act": "warn", "no-junction-chord-heading": "true"}),
     Variant("ego-way-euler-stops",
             "experiments (ours) together: the ego on its way and hypotheses that stop within "
             "one of SUMO's steps staying there (--ego-on-way --euler-stops)",

@@ -297,8 +297,8 @@ struct Params {
    *  Judged (same stop, with its path tree beside the way): a third to a half fewer false
    *  alarms on every set, but warned collisions and overlaps lost, so off. On one path
    *  (twenty-sixth stop, a fresh held-out sublane grid among the sets): held-out false alarms
-   *  40 -> 31, but a held-out collision at 1 s (p 0.907 -> 0.881) and a held-out overlap (a
-   *  sideways move of SUMO's sublane model in the junction) no longer warned, so off. Reads which lane of the junction it is on, which
+   *  40 -> 31, but a held-out collision at 1 s (p 0.907 -> 0.881) and a held-out overlap (of
+   *  a body the driver misread, traced) no longer warned, so off. Reads which lane of the junction it is on, which
    *  its own route gives. Driver: --ego-on-way. */
   bool ego_on_way{false};
   /** The SUMO driver's lane sampling: a lane whose fitted centre line leaves the lane between

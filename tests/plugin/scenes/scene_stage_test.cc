@@ -621,12 +621,12 @@ double HeadingPastTheTurn(const SceneConfig& config, const std::string& lane, do
   return s.ego.state.yaw_rad * 180.0 / kPi;
 }
 
-// SceneConfig::junction_chord_heading: a 5 m car in the right turn above, its front 5 m along
+// SceneConfig::junction_chord_heading (the default): a 5 m car in the right turn above, its front 5 m along
 // the internal lane at (1.6, 3.4), its back 5 m behind along its lanes at (0, 0); SUMO's angle
-// is its front piece's (east). With the experiment it is read along the chord from its back to
-// its front (64.8 degrees), its centre half its length behind the front along that; without,
+// is its front piece's (east). By default it is read along the chord from its back to
+// its front (64.8 degrees), its centre half its length behind the front along that; turned off,
 // SUMO's angle. Catches a chord taken from the wrong length or lanes, a centre not moved with
-// it, or the experiment acting outside a junction.
+// it, or the rule acting outside a junction.
 TEST(SceneStage, InAJunctionTheChordOfItsLanesIsTheHeadingWithTheExperiment) {
   auto read = [](const SceneConfig& config, const std::string& lane, double position_m,
                  double x, double y, double angle_deg) {
@@ -642,13 +642,15 @@ TEST(SceneStage, InAJunctionTheChordOfItsLanesIsTheHeadingWithTheExperiment) {
     return stage.Run(Observe(w, {"car"})).scenes.at(0).ego.state;
   };
   SceneConfig chord;
-  chord.junction_chord_heading = true;
+  EXPECT_TRUE(chord.junction_chord_heading);  // the default
+  SceneConfig held;
+  held.junction_chord_heading = false;
   const double expected = std::atan2(3.4, 1.6);
   const ObjectState on = read(chord, ":J_0_0", 5.0, 1.6, 3.4, 90.0);
   EXPECT_NEAR(on.yaw_rad, expected, 1e-9);
   EXPECT_NEAR(on.x_m, 1.6 - 2.5 * std::cos(expected), 1e-9);
   EXPECT_NEAR(on.y_m, 3.4 - 2.5 * std::sin(expected), 1e-9);
-  const ObjectState off = read(SceneConfig{}, ":J_0_0", 5.0, 1.6, 3.4, 90.0);
+  const ObjectState off = read(held, ":J_0_0", 5.0, 1.6, 3.4, 90.0);
   EXPECT_NEAR(off.yaw_rad, 0.0, 1e-9);  // SUMO's angle: east
   // Out of the junction (front 20 m into E, back on it too): SUMO's angle either way.
   EXPECT_NEAR(read(chord, "E_0", 20.0, 25.0, 3.4, 80.0).yaw_rad, 10.0 * kPi / 180.0, 1e-9);
@@ -660,6 +662,9 @@ TEST(SceneStage, AfterALaneChangeJustPastAJunctionTheHeadingIsTheWayOfItsNewLane
   // there to the front at (6, 6.6): 32.6 degrees left of the road, 57.4 in navigation degrees.
   const double sumo = std::atan2(3.2, 5.0) * 180.0 / kPi;
   SceneConfig config;  // SUMO's defaults: lanechange.duration 0
+  // SUMO's angle while the back is in the junction (the rule before junction_chord_heading,
+  // which replaces it by default and is tested above).
+  config.junction_chord_heading = false;
   double centre_y = 0.0;
   // Read along the turn moved onto E_1: its back at (1, 6.6), heading east, centred on E_1.
   EXPECT_NEAR(HeadingPastTheTurn(config, "E_1", 1.0, 90.0 - sumo, &centre_y), 0.0, 1e-9);
@@ -669,10 +674,10 @@ TEST(SceneStage, AfterALaneChangeJustPastAJunctionTheHeadingIsTheWayOfItsNewLane
   // Once the whole body is on E_1 its back has followed: SUMO's angle again.
   EXPECT_NEAR(HeadingPastTheTurn(config, "E_1", 6.0, 85.0), 5.0, 1e-9);
   // --no-way-heading takes SUMO's angle; so does a run where SUMO moves lane changes over time.
-  SceneConfig off;
+  SceneConfig off = config;
   off.way_heading = false;
   EXPECT_NEAR(HeadingPastTheTurn(off, "E_1", 1.0, 90.0 - sumo), sumo, 1e-9);
-  SceneConfig gradual;
+  SceneConfig gradual = config;
   gradual.instant_lane_changes = false;
   EXPECT_NEAR(HeadingPastTheTurn(gradual, "E_1", 1.0, 90.0 - sumo), sumo, 1e-9);
 }
@@ -703,8 +708,10 @@ double YawRateEnteringACorner(const SceneConfig& config, double angle_deg) {
 TEST(SceneStage, AtShortStepsAVehicleFollowingItsLanesTurnsAsItsHeadingAlongThemTurns) {
   // Its heading did not change since the last step, but 1.5 m on (a quarter second at 6 m/s)
   // its front has rounded the corner: from (0, 6.1) to (1.1, 10) the chord points right of
-  // north, while 1.5 m back it pointed north.
+  // north, while 1.5 m back it pointed north. (SUMO's angle in the junction: without
+  // junction_chord_heading, whose chord turns with the lanes itself.)
   SceneConfig config;
+  config.junction_chord_heading = false;
   const double r = YawRateEnteringACorner(config, 0.0);
   const double turned = std::atan2(1.1, 3.9);  // radians, clockwise, over 3 m
   EXPECT_NEAR(r, -6.0 * turned / 3.0, 1e-9);
@@ -753,12 +760,14 @@ TEST(SceneStage, ACarMovedSidewaysAlongItsLaneTurnsAsItsLaneNotAsItsHeadingJumpe
   const double jump = (5.0 * kPi / 180.0) / 0.1;  // 5 degrees left in 0.1 s: within grip
   SceneConfig gradual;
   gradual.instant_lane_changes = false;
+  gradual.junction_chord_heading = false;  // SUMO's angle while the back is in the junction
   EXPECT_NEAR(YawRateAfterAHeadingStep(gradual, 90.0, 85.0), 0.0, 1e-12);
   // Turned 25 degrees from its lane: not a sideways move along it; its heading's change.
   EXPECT_NEAR(YawRateAfterAHeadingStep(gradual, 70.0, 65.0), jump, 1e-9);
   // Its back on E (front 6 m into it): its heading's change.
   EXPECT_NEAR(YawRateAfterAHeadingStep(gradual, 90.0, 85.0, 6.0), jump, 1e-9);
   SceneConfig instant;  // SUMO's defaults: lanechange.duration 0
+  instant.junction_chord_heading = false;
   EXPECT_NEAR(YawRateAfterAHeadingStep(instant, 90.0, 85.0), jump, 1e-9);
   gradual.lane_change_yaw_rate = false;
   EXPECT_NEAR(YawRateAfterAHeadingStep(gradual, 90.0, 85.0), jump, 1e-9);
