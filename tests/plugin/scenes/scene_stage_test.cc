@@ -601,16 +601,21 @@ TEST(SceneStage, AHeadingSumoTurnsFasterThanGripIsHeldForAtMostHalfASecond) {
 
 // A right turn into a two-lane road: N runs north to (0, 0), the turn's internal lane goes
 // (0, 0) -> (0, 3.4) -> (5, 3.4) into E's lane 0 (y = 3.4; lane 1 at y = 6.6), E runs east from
-// x = 5. A 5 m car whose front is `position_m` into E on `lane`, with SUMO's angle `angle_deg`:
-// the heading it is read with, in degrees.
-double HeadingPastTheTurn(const SceneConfig& config, const std::string& lane, double position_m,
-                          double angle_deg, double* centre_y = nullptr) {
-  FakeSumoWorld w;
+// x = 5.
+void AddRightTurnIntoTwoLanes(FakeSumoWorld& w) {
   w.AddEdge("N", 0, -100, 0, 0, 1);
   w.AddLaneShape(":J_0", {Point2{0, 0}, Point2{0, 3.4}, Point2{5, 3.4}});
   w.AddEdge("E", 5, 5, 105, 5, 2);
   w.AddLinkVia("N_0", "E_0", ":J_0_0", "r");
   w.AddLink(":J_0_0", "E_0");
+}
+
+// A 5 m car in that turn whose front is `position_m` into E on `lane`, with SUMO's angle
+// `angle_deg`: the heading it is read with, in degrees.
+double HeadingPastTheTurn(const SceneConfig& config, const std::string& lane, double position_m,
+                          double angle_deg, double* centre_y = nullptr) {
+  FakeSumoWorld w;
+  AddRightTurnIntoTwoLanes(w);
   const double y = lane == "E_1" ? 6.6 : 3.4;
   SumoObject& car =
       w.AddVehicle("car", 5 + position_m, y, angle_deg, 8.0, lane, position_m, {"N", "E"});
@@ -631,11 +636,7 @@ TEST(SceneStage, InAJunctionTheChordOfItsLanesIsTheHeadingWithTheExperiment) {
   auto read = [](const SceneConfig& config, const std::string& lane, double position_m,
                  double x, double y, double angle_deg) {
     FakeSumoWorld w;
-    w.AddEdge("N", 0, -100, 0, 0, 1);
-    w.AddLaneShape(":J_0", {Point2{0, 0}, Point2{0, 3.4}, Point2{5, 3.4}});
-    w.AddEdge("E", 5, 5, 105, 5, 2);
-    w.AddLinkVia("N_0", "E_0", ":J_0_0", "r");
-    w.AddLink(":J_0_0", "E_0");
+    AddRightTurnIntoTwoLanes(w);
     SumoObject& car = w.AddVehicle("car", x, y, angle_deg, 8.0, lane, position_m, {"N", "E"});
     car.route_index = lane[0] == ':' ? 0 : 1;
     SceneStage stage(config, w.StepLength(), true, &w, &w);
