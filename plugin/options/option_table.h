@@ -29,8 +29,9 @@ struct RawOptions {
       no_crossing_stops{false}, no_yield_stops{false}, no_heading_hold{false},
       no_way_heading{false}, junction_shapes{false}, no_junction_shapes{false}, bent_bodies{false},
       bodies_on_path{false}, no_sumo_box{false}, no_junction_ways{false}, way_lateral_paths{false},
-      ego_on_way{false}, release_braking{false}, no_world_step_collisions{false}, euler_stops{false},
-      junction_chord_heading{false}, no_junction_chord_heading{false}, ego_stops{false}, internal_junction_yield{false},
+      ego_on_way{false}, release_braking{false}, no_world_step_collisions{false},
+      euler_stops{false}, junction_chord_heading{false}, no_junction_chord_heading{false},
+      ego_stops{false}, internal_junction_yield{false},
       no_internal_junction_yield{false}, no_simd{false}, no_pipeline{false};
 };
 

@@ -108,8 +108,8 @@ struct SceneConfig {
    *  geometry and the edges the vehicle came by, which sensors see. */
   bool way_heading{true};
   /** On by default since the twenty-sixth stop (held-out false alarms 40 -> 36, every warned
-   *  collision and overlap kept, as early): a vehicle whose body is in a junction (front or back on an internal
-   *  lane, BodyInJunction) is read with the heading of the chord of its lanes from its back
+   *  collision and overlap kept, as early): a vehicle whose body is in a junction (front or
+   *  back on an internal lane, BodyInJunction) is read with the heading of the chord of its lanes from its back
    *  (its length behind its front along them) to its front, as SUMO places its body, not with
    *  SUMO's angle, which follows the internal lane's piece at the front and jumps at its
    *  corners (6.7, 29.5, 58.6, 29.4 degrees in four 0.1 s steps of one turn), nor with the

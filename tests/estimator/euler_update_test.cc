@@ -221,8 +221,10 @@ TEST(EulerUpdate, ABodyThatStopsWithinAWorldStepStaysWhereTheWorldLeftIt) {
   // on a world step (the shift alone is SUMO's: 9, 13.5, 13.5 m).
   struct Case {
     double v0, decel;
+    bool stops_on_a_step;  // its speed reaches 0 exactly at a world step: linear throughout
   };
-  for (const Case c : {Case{5.2, 9.0}, Case{13.0, 9.0}, Case{13.5, 4.5}}) {
+  int linear = 0, inside = 0;
+  for (const Case c : {Case{5.2, 9.0, false}, Case{13.0, 9.0, false}, Case{13.5, 4.5, true}}) {
     core::HypothesisSet h = BrakingVehicle(c.v0, c.decel);
     h.position_lead = 0.5;
     h.pose_hold_steps = 50;
@@ -236,12 +238,16 @@ TEST(EulerUpdate, ABodyThatStopsWithinAWorldStepStaysWhereTheWorldLeftIt) {
     h.hold_stops = false;
     std::vector<double> old(150);
     core::SimulateHypothesis(h, cfg, 0, 0, old.data(), y.data(), yaw.data());
-    if (c.decel == 4.5) {
+    if (c.stops_on_a_step) {
+      ++linear;
       for (int n = 0; n < 150; ++n) EXPECT_EQ(old[n], x[n]) << what << ", step " << n;
     } else {
+      ++inside;
       EXPECT_LT(old[149], sumo[2] - 0.5) << what;
     }
   }
+  EXPECT_EQ(linear, 1);  // both kinds were checked
+  EXPECT_EQ(inside, 2);
   // The first case goes back behind where it stands without the hold: 1.1 m.
   core::HypothesisSet h = BrakingVehicle(5.2, 9.0);
   h.position_lead = 0.5;

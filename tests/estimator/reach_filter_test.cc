@@ -90,9 +90,10 @@ void ExpectSameRoute(const EscapeRoute& a, const EscapeRoute& b, const std::stri
 }
 
 // An ego alone with the trial's params: every other trial as a simulator's Euler update moves
-// it (poses shifted by the speed change; every sixth at whole steps, held poses), every third as SUMO draws bodies in a turn (the
-// chord's poses lie off the centre's), every fourth on its way through a tight turn (with
-// Params::ego_on_way; the way up to 0.6 m beside it, so that it keeps that offset).
+// it (poses shifted by the speed change; every sixth at whole steps, held poses), every third
+// as SUMO draws bodies in a turn (the chord's poses lie off the centre's), every fourth on its
+// way through a tight turn (with Params::ego_on_way; the way up to 0.6 m beside it, so that it
+// keeps that offset).
 Scene SomeEgoScene(std::mt19937_64& rng, int trial) {
   Scene scene;
   scene.ego = SomeEgo(rng);

@@ -626,7 +626,8 @@ double HeadingPastTheTurn(const SceneConfig& config, const std::string& lane, do
   return s.ego.state.yaw_rad * 180.0 / kPi;
 }
 
-// SceneConfig::junction_chord_heading (the default): a 5 m car in the right turn above, its front 5 m along
+// SceneConfig::junction_chord_heading (the default): a 5 m car in the right turn above, its
+// front 5 m along
 // the internal lane at (1.6, 3.4), its back 5 m behind along its lanes at (0, 0); SUMO's angle
 // is its front piece's (east). By default it is read along the chord from its back to
 // its front (64.8 degrees), its centre half its length behind the front along that; turned off,
