@@ -35,15 +35,61 @@ bool StaysOnFootway(WalkingPlace here, WalkingPlace next) {
   return on_footway && next_on_footway;
 }
 
-bool WaitsAtCrossing(const std::vector<LaneLink>& links, const std::string& crossing_lane) {
+bool SignalState(const std::string& state) {
+  return state == "G" || state == "g" || state == "y" || state == "Y" || state == "r" ||
+         state == "u" || state == "o" || state == "O";
+}
+
+bool MustWaitAt(const LaneLink& entry) {
+  const std::string& st = entry.state;
+  if (st == "r" || st == "u" || st == "y" || st == "Y") return true;
+  const bool no_priority = st == "s" || st == "w" || st == "m" || st == "=" || st == "g";
+  return no_priority && entry.has_foe;
+}
+
+namespace {
+
+// The link of `links` that leads to `lane` (directly or through it as its internal lane).
+std::optional<LaneLink> LinkTo(const std::vector<LaneLink>& links, const std::string& lane) {
   for (const LaneLink& l : links) {
-    if (l.lane != crossing_lane && l.internal != crossing_lane) continue;
-    const std::string& st = l.state;
-    if (st == "r" || st == "u" || st == "y" || st == "Y") return true;
-    const bool no_priority = st == "s" || st == "w" || st == "m" || st == "=" || st == "g";
-    return no_priority && l.has_foe;
+    if (l.lane == lane || l.internal == lane) return l;
   }
-  return false;
+  return std::nullopt;
+}
+
+// ":J_c0" -> ":J": the junction of one of its crossings' or walking areas' edge IDs.
+std::string JunctionOf(const std::string& edge) { return edge.substr(0, edge.rfind('_')); }
+
+}  // namespace
+
+std::optional<LaneLink> CrossingEntries::EntryLink(const std::string& walking_lane,
+                                                   const std::string& crossing_edge) {
+  const std::string crossing_lane = crossing_edge + "_0";  // a crossing has one lane
+  // Walking the crossing its way: the link from the walking area into it.
+  if (auto forward = LinkTo(network_->LinksNow(walking_lane), crossing_lane)) return forward;
+  // The other way: the crossing's link into this walking area where a light controls it.
+  if (auto back = LinkTo(network_->LinksNow(crossing_lane), walking_lane)) {
+    if (SignalState(back->state)) return back;
+  }
+  // Else the link into the crossing from the walking area at its other end.
+  for (const std::string& other : WalkingAreasBeside(crossing_edge)) {
+    if (other == walking_lane || !LinkTo(network_->Links(other), crossing_lane)) continue;
+    return LinkTo(network_->LinksNow(other), crossing_lane);
+  }
+  return std::nullopt;
+}
+
+const std::vector<std::string>& CrossingEntries::WalkingAreasBeside(
+    const std::string& crossing_edge) {
+  if (!scanned_) {
+    for (const std::string& edge : network_->Edges()) {
+      if (JunctionPart(edge, 'w')) walking_areas_[JunctionOf(edge)].push_back(edge + "_0");
+    }
+    scanned_ = true;
+  }
+  static const std::vector<std::string> kNone;
+  const auto it = walking_areas_.find(JunctionOf(crossing_edge));
+  return it == walking_areas_.end() ? kNone : it->second;
 }
 
 double DistanceToCrossing(const LaneInfo& crossing, double x_m, double y_m) {

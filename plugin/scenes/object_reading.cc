@@ -101,7 +101,7 @@ VehicleOnLane OnLane(const SumoObject& o, const Pose2& c, double speed_mps, doub
 ObjectReader::ObjectReader(const SceneConfig& config, double step_s, RoadNetwork* network,
                            TrafficView* traffic)
     : config_(config), step_s_(step_s), network_(network), traffic_(traffic),
-      counter_lanes_(network) {}
+      counter_lanes_(network), crossing_entries_(network) {}
 
 std::vector<ObjectSnapshot> ObjectReader::Read(const std::vector<SumoObject>& objects,
                                                double sumo_time_s) {
@@ -173,7 +173,8 @@ ObjectSnapshot ObjectReader::Person(const SumoObject& o) {
   if (!s.stays_on_footway && config_.crossing_obligations && here == WalkingPlace::kWalkingArea &&
       next == WalkingPlace::kCrossing) {
     const std::string crossing = o.next_edge + "_0";
-    s.stays_on_footway = WaitsAtCrossing(network_->LinksNow(s.lane), crossing);
+    const std::optional<LaneLink> entry = crossing_entries_.EntryLink(s.lane, o.next_edge);
+    s.stays_on_footway = entry && MustWaitAt(*entry);
     // It stops where the crossing begins, as SUMO's persons do: its reference hypothesis
     // decelerates to that point (SceneConfig::crossing_stops).
     if (s.stays_on_footway && config_.crossing_stops) {

@@ -22,6 +22,7 @@
 #include "plugin/network/counter_lanes.h"
 #include "plugin/network/road_network.h"
 #include "plugin/network/traffic_view.h"
+#include "plugin/scenes/footway.h"
 #include "plugin/scenes/object_lanes.h"
 #include "plugin/scenes/object_snapshot.h"
 #include "plugin/scenes/scene_config.h"
@@ -78,6 +79,7 @@ class ObjectReader {
   RoadNetwork* network_;
   TrafficView* traffic_;
   CounterLanes counter_lanes_;
+  CrossingEntries crossing_entries_;  ///< the links persons obey to enter crossings
   /** What the previous read of a vehicle saw: when, the heading used (SUMO's, or the held one,
    *  HeadingOf), the yaw rate used, and when SUMO's heading was last taken as it was. */
   struct LastHeading {

@@ -37,8 +37,9 @@ struct SceneConfig {
    *  flicker of p but not the held-out networks' false alarms (twenty-third stop). */
   double accel_window_s{0.0};
   /** A person on a walking area whose next crossing it may not enter now (red, or no priority
-   *  while a vehicle approaches: WaitsAtCrossing) stays on the footway. Reads the person's next
-   *  edge, which only the simulator knows (off with --observable-only, which does not read it,
+   *  while a vehicle approaches, at the link SUMO's persons obey in the way it walks:
+   *  CrossingEntries, MustWaitAt) stays on the footway. Reads the person's next edge, which
+   *  only the simulator knows (off with --observable-only, which does not read it,
    *  and with --no-crossing-obligations). */
   bool crossing_obligations{true};
   /** Such a waiting person is expected to stop where the crossing begins, as SUMO's persons do:

@@ -271,19 +271,24 @@ TEST(SceneStage, AWalkerWaitingAtACrossingItMayNotEnterKeepsToTheFootway) {
   w.AddEdge(":J_c0", 200, -3, 200, 10, 1, 3.0, {"pedestrian"});  // its crossing
   w.AddEdge(":K_w0", 185, -3, 188, -3, 1, 3.0, {"pedestrian"});
   w.AddEdge(":K_c0", 190, -3, 190, 10, 1, 3.0, {"pedestrian"});
+  w.AddEdge(":J_w1", 198, 12, 202, 12, 1, 3.0, {"pedestrian"});  // the crossing's other end
   w.AddLink(":J_w0_0", ":J_c0_0", "s", true);   // no priority, a vehicle approaches: waits
+  w.AddLink(":J_c0_0", ":J_w1_0", "M", false);  // netconvert's link out of the crossing
   w.AddLink(":K_w0_0", ":K_c0_0", "M", true);   // a zebra: it may cross
   w.AddVehicle("ego", 150, 0, 90, 10, "E_0", 150, {"E"});
   w.AddPerson("waits", 196, -3, 0, 1.0, ":J_w0_0", ":J_c0");
   w.AddPerson("goes", 186, -3, 0, 1.0, ":K_w0_0", ":K_c0");
+  // Walking the crossing against its links' direction it obeys the same link, as SUMO's do.
+  w.AddPerson("waits_too", 200, 12, 180, 1.0, ":J_w1_0", ":J_c0");
   auto read = [&](SceneConfig config) {
     SceneStage stage(config, w.StepLength(), true, &w, &w);
     return stage.Run(Observe(w, {"ego"})).scenes.at(0);
   };
   const Scene s = read(SceneConfig{});
-  ASSERT_EQ(s.pedestrians.size(), 2u);  // ID order: goes, waits
+  ASSERT_EQ(s.pedestrians.size(), 3u);  // ID order: goes, waits, waits_too
   EXPECT_FALSE(s.pedestrians[0].stays_on_footway);
   EXPECT_TRUE(s.pedestrians[1].stays_on_footway);
+  EXPECT_TRUE(s.pedestrians[2].stays_on_footway);
   // The waiting walker is expected to stop where its crossing begins, (200, -3), 4 m ahead:
   // 1 m/s within 4 m is 1 / 8 m/s^2. The one that may cross is not.
   ASSERT_TRUE(s.pedestrians[1].state.expected_accel_mps2.has_value());
@@ -297,6 +302,7 @@ TEST(SceneStage, AWalkerWaitingAtACrossingItMayNotEnterKeepsToTheFootway) {
   SceneConfig off;
   off.crossing_obligations = false;  // --no-crossing-obligations: neither
   EXPECT_FALSE(read(off).pedestrians[1].stays_on_footway);
+  EXPECT_FALSE(read(off).pedestrians[2].stays_on_footway);
   EXPECT_FALSE(read(off).pedestrians[1].state.expected_accel_mps2.has_value());
 }
 
