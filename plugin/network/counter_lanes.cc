@@ -6,6 +6,7 @@
 #include <set>
 
 #include "plugin/network/polyline.h"
+#include "plugin/network/traffic_side.h"
 
 namespace criticality::plugin {
 namespace {
@@ -21,10 +22,16 @@ long long Cell(double v) { return static_cast<long long>(std::floor(v / kIndexCe
 
 }  // namespace
 
-std::optional<std::string> CounterLanes::LeftOf(const std::string& lane) {
+bool CounterLanes::LeftHand() {
+  if (!left_hand_) left_hand_ = LeftHandTraffic(*network_);
+  return *left_hand_;
+}
+
+std::optional<std::string> CounterLanes::Offside(const std::string& lane) {
   auto cached = cache_.find(lane);
   if (cached != cache_.end()) return cached->second;
   BuildIndex();
+  const double side = LeftHand() ? -1.0 : 1.0;  // the offside: +1 left, -1 right
   const LaneInfo& own = network_->Lane(lane);
   const double length = PolylineLength(own.shape);
   std::map<std::string, int> votes;
@@ -32,9 +39,9 @@ std::optional<std::string> CounterLanes::LeftOf(const std::string& lane) {
     double heading = 0.0;
     const Point2 mid = PointAlong(own.shape, f * length, &heading);
     std::set<std::string> here;
-    for (const LeftmostSegment* seg : SegmentsNear(mid)) {
+    for (const OffsideSegment* seg : SegmentsNear(mid)) {
       if (seg->edge == own.edge || here.count(seg->lane)) continue;
-      const double off = 0.5 * (own.width_m + network_->Lane(seg->lane).width_m);
+      const double off = side * 0.5 * (own.width_m + network_->Lane(seg->lane).width_m);
       const Point2 q{mid.x - std::sin(heading) * off, mid.y + std::cos(heading) * off};
       const double dx = seg->b.x - seg->a.x, dy = seg->b.y - seg->a.y;
       const double len2 = dx * dx + dy * dy;
@@ -67,7 +74,7 @@ void CounterLanes::BuildIndex() {
     const std::string lane = edge + "_" + std::to_string(network_->LaneCount(edge) - 1);
     const std::vector<Point2>& shape = network_->Lane(lane).shape;
     for (size_t i = 1; i < shape.size(); ++i) {
-      segments_.push_back(LeftmostSegment{shape[i - 1], shape[i], edge, lane});
+      segments_.push_back(OffsideSegment{shape[i - 1], shape[i], edge, lane});
       const int id = static_cast<int>(segments_.size()) - 1;
       // Every cell the segment's bounding box touches.
       const long long x0 = Cell(std::min(shape[i - 1].x, shape[i].x));
@@ -81,9 +88,9 @@ void CounterLanes::BuildIndex() {
   }
 }
 
-std::vector<const CounterLanes::LeftmostSegment*> CounterLanes::SegmentsNear(
+std::vector<const CounterLanes::OffsideSegment*> CounterLanes::SegmentsNear(
     const Point2& p) const {
-  std::vector<const LeftmostSegment*> out;
+  std::vector<const OffsideSegment*> out;
   std::set<int> seen;
   const long long cx = Cell(p.x), cy = Cell(p.y);
   for (long long x = cx - 1; x <= cx + 1; ++x) {

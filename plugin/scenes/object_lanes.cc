@@ -55,32 +55,37 @@ void FollowRoute(const VehicleOnLane& v, double reach, RoadNetwork* network, Lan
 namespace {
 
 // The neighbours as the vehicle sees them, from `reference` (its lane, or inside a junction
-// the lane it drives onto).
+// the lane it drives onto). SUMO numbers lanes from the kerb: the next higher index is on the
+// offside (left in right-hand traffic, right in a left-hand network), and beyond the highest
+// the opposite direction's lane (CounterLanes::Offside).
 void Neighbours(const VehicleOnLane& v, const std::string& reference, RoadNetwork* network,
                 CounterLanes* counter_lanes, LaneCorridor* c) {
   const LaneInfo& ref = network->Lane(reference);
   const int index = IsInternal(v.lane) ? ref.index : v.lane_index;
   const int n = network->LaneCount(ref.edge);
-  const std::string left = ref.edge + "_" + std::to_string(index + 1);
-  const std::string right = ref.edge + "_" + std::to_string(index - 1);
+  const bool left_hand = counter_lanes->LeftHand();
+  std::optional<NeighbourLane>& offside = left_hand ? c->right : c->left;
+  std::optional<NeighbourLane>& nearside = left_hand ? c->left : c->right;
+  const std::string beyond = ref.edge + "_" + std::to_string(index + 1);
+  const std::string within = ref.edge + "_" + std::to_string(index - 1);
   if (index + 1 < n) {
-    if (Allows(*network, left, v.vehicle_class))
-      c->left = NeighbourLane{network->Lane(left).width_m, false};
-  } else if (const auto counter = counter_lanes->LeftOf(reference)) {
+    if (Allows(*network, beyond, v.vehicle_class))
+      offside = NeighbourLane{network->Lane(beyond).width_m, false};
+  } else if (const auto counter = counter_lanes->Offside(reference)) {
     if (Allows(*network, *counter, v.vehicle_class))
-      c->left = NeighbourLane{network->Lane(*counter).width_m, true};
+      offside = NeighbourLane{network->Lane(*counter).width_m, true};
   }
-  if (index > 0 && Allows(*network, right, v.vehicle_class))
-    c->right = NeighbourLane{network->Lane(right).width_m, false};
+  if (index > 0 && Allows(*network, within, v.vehicle_class))
+    nearside = NeighbourLane{network->Lane(within).width_m, false};
 }
 
 }  // namespace
 
-std::string LaneChangeTarget(const VehicleOnLane& v, RoadNetwork* network) {
+std::string LaneChangeTarget(const VehicleOnLane& v, RoadNetwork* network, bool left_hand) {
   if (v.blinker == Blinker::kNone || v.lane.empty() || IsInternal(v.lane)) return "";
   const LaneInfo& own = network->Lane(v.lane);
-  const int side = v.blinker == Blinker::kLeft ? 1 : -1;
-  const int index = v.lane_index + side;
+  const int side = v.blinker == Blinker::kLeft ? 1 : -1;  // +1: to the left
+  const int index = v.lane_index + (left_hand ? -side : side);
   if (index < 0 || index >= network->LaneCount(own.edge)) return "";
   const std::string target = own.edge + "_" + std::to_string(index);
   if (!Allows(*network, target, v.vehicle_class)) return "";
@@ -110,7 +115,7 @@ ObjectLanes LanesOf(const VehicleOnLane& seen, const SceneConfig& config, double
   }
   VehicleOnLane v = seen;
   if (config.lane_change_target) {
-    const std::string target = LaneChangeTarget(seen, network);
+    const std::string target = LaneChangeTarget(seen, network, counter_lanes->LeftHand());
     if (!target.empty()) {
       const LaneInfo& lane = network->Lane(target);
       v.lane = target;

@@ -3,8 +3,9 @@
 // along its route, its width and its neighbours as the vehicle sees them) read from the road
 // network and sampled into the estimator's LaneSet (lane_corridor.h).
 //  - A neighbour is a lane of the same edge that the vehicle's class may use (a sidewalk never
-//    is); left of the leftmost such lane, the adjacent lane of the opposite direction
-//    (plugin/network/counter_lanes.h), flagged as counter-traffic.
+//    is); beyond the highest-index lane, on its offside (left in right-hand traffic, right in a
+//    left-hand network: plugin/network/traffic_side.h), the adjacent lane of the opposite
+//    direction (plugin/network/counter_lanes.h), flagged as counter-traffic.
 //  - Inside a junction the neighbours are those of the lane the internal lane leads to.
 //  - When its route ends within the corridor, the distance its front still goes: SUMO removes a
 //    vehicle whose front reaches the end of its route (its arrival position, by default the
@@ -52,8 +53,9 @@ struct VehicleOnLane {
  *  way, its heading turned that way from the lane's direction at its centre by at least
  *  kLaneChangeMinAngleRad. Past the middle of the change SUMO puts it on the new lane, where
  *  its front is off that lane's centre the other way: then "". Reads the blinker, the body's
- *  pose and the lane geometry, which sensors and a map give. */
-std::string LaneChangeTarget(const VehicleOnLane& v, RoadNetwork* network);
+ *  pose and the lane geometry, which sensors and a map give. In a left-hand network
+ *  (`left_hand`, LeftHandTraffic) the lane to the left has the next lower index. */
+std::string LaneChangeTarget(const VehicleOnLane& v, RoadNetwork* network, bool left_hand = false);
 
 /** See LaneChangeTarget. Project choices (SUMO drives a vehicle exactly on its lane's centre
  *  line unless it is changing lanes; its continuous lane change turns the body by

@@ -45,6 +45,15 @@ class FakeSumoWorld final : public SumoWorld {
     lane_count_[edge] = lanes;
     edges_.push_back(edge);
   }
+  /** Renumbers `edge`'s lanes from its other side, as netconvert --lefthand numbers them: lane 0
+   *  becomes the leftmost (each lane's shape swapped with its mirror's). */
+  void MirrorLanes(const std::string& edge) {
+    const int n = lane_count_.at(edge);
+    for (int k = 0; k < n / 2; ++k) {
+      std::swap(lanes_.at(edge + "_" + std::to_string(k)).shape,
+                lanes_.at(edge + "_" + std::to_string(n - 1 - k)).shape);
+    }
+  }
   void AddLink(const std::string& from_lane, const std::string& to_lane, std::string state = "M",
                bool has_foe = false, std::string direction = "s") {
     links_[from_lane].push_back(LaneLink{to_lane, "", state, has_foe, direction});

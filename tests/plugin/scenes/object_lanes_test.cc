@@ -10,6 +10,7 @@
 
 #include "../fake_sumo_world.h"
 #include "criticality/geometry.h"
+#include "plugin/network/traffic_side.h"
 
 namespace criticality::plugin {
 namespace {
@@ -132,6 +133,73 @@ TEST(ObjectLanes, WithLaneChangeTargetTheLanesAreThoseOfTheLaneMovedInto) {
   EXPECT_NEAR(own.lanes.own->right.points[0].y, -1.6, 0.01);
   EXPECT_TRUE(own.lanes.left.has_value());
   EXPECT_FALSE(own.lanes.right.has_value());
+}
+
+// A left-hand road running east and west (netconvert --lefthand numbers lanes from the kerb,
+// now on the left): eastbound E keeps to the north half, E_0 at y = 4.8 by the kerb, E_1 at 1.6
+// by the centre line; westbound W keeps to the south half, W_0 at -4.8, W_1 at -1.6.
+FakeSumoWorld LeftHandRoad() {
+  FakeSumoWorld w;
+  w.AddEdge("E", 0, 3.2, 200, 3.2, 2);
+  w.AddEdge("W", 200, -3.2, 0, -3.2, 2);
+  w.MirrorLanes("E");
+  w.MirrorLanes("W");
+  return w;
+}
+
+TEST(ObjectLanes, InALeftHandNetworkTheNeighboursAndTheOncomingLaneAreMirrored) {
+  FakeSumoWorld right_hand = TwoLanesEast();
+  FakeSumoWorld left_hand = LeftHandRoad();
+  EXPECT_FALSE(LeftHandTraffic(right_hand));
+  EXPECT_TRUE(LeftHandTraffic(left_hand));
+  FakeSumoWorld single;
+  single.AddEdge("S", 0, 0, 100, 0, 1);
+  EXPECT_FALSE(LeftHandTraffic(single));  // nothing to read: taken as right-hand
+
+  CounterLanes counter(&left_hand);
+  EXPECT_TRUE(counter.LeftHand());
+  EXPECT_EQ(counter.Offside("E_1").value_or(""), "W_1");
+  EXPECT_EQ(counter.Offside("W_1").value_or(""), "E_1");
+  EXPECT_FALSE(counter.Offside("E_0").has_value());  // the kerb lane: nothing beyond the road
+  // A car by the centre line, E_1: the kerb lane on its left, the oncoming lane on its right.
+  VehicleOnLane car;
+  car.lane = "E_1";
+  car.lane_index = 1;
+  car.lane_position_m = 50.0;
+  car.length_m = 5.0;
+  car.speed_mps = 10.0;
+  car.route = {"E"};
+  car.vehicle_class = "passenger";
+  car.front = Point2{50.0, 1.6};
+  car.centre = Pose2{47.5, 1.6, 0.0};
+  const ObjectLanes by_centre = LanesOf(car, SceneConfig{}, 0.1, &left_hand, &counter);
+  ASSERT_TRUE(by_centre.lanes.left && by_centre.lanes.right);
+  EXPECT_FALSE(by_centre.lanes.left->counter_traffic);
+  EXPECT_TRUE(by_centre.lanes.right->counter_traffic);
+  // In the car's frame (its centre on y = 1.6): E_0's kerb side at y = 6.4, W_1's far side at
+  // y = -3.2.
+  EXPECT_NEAR(by_centre.lanes.left->left.points[0].y, 4.8, 0.01);
+  EXPECT_NEAR(by_centre.lanes.right->right.points[0].y, -4.8, 0.01);
+  // By the kerb, E_0: E_1 on its right, nothing on its left.
+  car.lane = "E_0";
+  car.lane_index = 0;
+  car.front = Point2{50.0, 4.8};
+  car.centre = Pose2{47.5, 4.8, 0.0};
+  const ObjectLanes by_kerb = LanesOf(car, SceneConfig{}, 0.1, &left_hand, &counter);
+  EXPECT_FALSE(by_kerb.lanes.left.has_value());
+  ASSERT_TRUE(by_kerb.lanes.right.has_value());
+  EXPECT_FALSE(by_kerb.lanes.right->counter_traffic);
+  EXPECT_NEAR(by_kerb.lanes.right->right.points[0].y, -4.8, 0.01);  // E_1's side at y = 0
+}
+
+TEST(ObjectLanes, InALeftHandNetworkALeftBlinkerPointsToTheLowerIndex) {
+  FakeSumoWorld w = TwoLanesEast();
+  w.MirrorLanes("E");  // E_0 at y = 1.6 (left), E_1 at y = -1.6
+  VehicleOnLane bus = ChangingBus(0.16, 0.026, Blinker::kLeft);  // moving left from y = -1.6
+  bus.lane = "E_1";
+  bus.lane_index = 1;
+  EXPECT_EQ(LaneChangeTarget(bus, &w, /*left_hand=*/true), "E_0");
+  EXPECT_EQ(LaneChangeTarget(bus, &w, /*left_hand=*/false), "");  // no E_2 to the "left"
 }
 
 }  // namespace
