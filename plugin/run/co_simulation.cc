@@ -164,9 +164,11 @@ class CoSimulation {
     db_->SetScenario(o_.run.expect, o_.run.expect_partner, o_.run.quiet_until_s,
                      o_.run.category);
     observe_ = std::make_unique<ObserveStage>(o_.observe, world_.get());
-    // SUMO moves vehicles by x += v_new * dt unless told to use the ballistic update: the
-    // estimator predicts the positions that update gives (Scene::euler_update_step_s).
-    const bool euler = world_->Option("step-method.ballistic") != "true";
+    // SUMO moves vehicles by x += v_new * dt unless it uses its ballistic update (told to, or
+    // switched to it by an action step length): the estimator predicts the positions that
+    // update gives (Scene::euler_update_step_s). SUMO may switch later (SwitchedToBallistic).
+    euler_ = !world_->BallisticUpdate();
+    const bool euler = euler_;
     // Whether SUMO moves a vehicle into the next lane within one step (no sublane model,
     // lanechange.duration 0): the headings it reports then (ObjectReader::HeadingOf).
     SceneConfig scenes = o_.scenes;
@@ -221,6 +223,7 @@ class CoSimulation {
     world_->Step();
     stepped_ = true;
     d.sumo = Lap(&t);
+    SwitchedToBallistic();
     Observation obs = observe_->Run();
     script_->Left(obs.arrived);
     d.observe = Lap(&t);
@@ -242,6 +245,19 @@ class CoSimulation {
   }
 
   bool InFlight() const { return ahead_ && ahead_->busy(); }
+
+  // SUMO switches to its ballistic update when it loads a vehicle type whose action step
+  // length differs from the step length: the scenes from then on predict continuous motion.
+  void SwitchedToBallistic() {
+    if (!euler_ || !world_->BallisticUpdate()) return;
+    euler_ = false;
+    scenes_->SwitchToBallistic();
+    std::fprintf(stderr,
+                 "sumo-criticality: note: SUMO moves vehicles by its ballistic update from "
+                 "t = %.2f s (a vehicle type's actionStepLength differs from the step length); "
+                 "the scenes predict continuous motion from then on\n",
+                 world_->Time());
+  }
 
   // The pipelined step's results, then its act and record.
   void FinishInFlight(const PublishTo& publish) {
@@ -434,6 +450,7 @@ class CoSimulation {
   std::unique_ptr<ProgressLine> progress_;  ///< on a terminal only
   size_t last_egos_{0};
   bool stepped_{false};  ///< a step was made: from then on the database is kept
+  bool euler_{true};     ///< SUMO moves vehicles by its Euler update (else ballistic)
   Clock::time_point last_print_{}, last_rss_{};
   double rss_mb_{0.0};
 };

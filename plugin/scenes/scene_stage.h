@@ -35,6 +35,9 @@ class SceneStage {
   SceneStage(const SceneConfig& config, double step_s, bool euler_update, RoadNetwork* network,
              TrafficView* traffic);
   SceneBatch Run(const Observation& obs);
+  /** SUMO switched to its ballistic update (SumoWorld::BallisticUpdate): scenes from now on
+   *  say continuous motion (Scene::euler_update_step_s = 0). */
+  void SwitchToBallistic() { euler_update_step_s_ = 0.0; }
   /** Object reads left out of scenes so far (an object is counted once per step) for values
    *  the estimator cannot use. */
   long long invalid_objects() const { return invalid_objects_; }

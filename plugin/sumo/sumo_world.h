@@ -86,6 +86,14 @@ class SumoWorld : public RoadNetwork, public TrafficView {
   virtual void ChangeSublane(const std::string& ego, double lateral_m) = 0;
   /** How this SUMO moves vehicles sideways (options lateral-resolution, lanechange.duration). */
   virtual LaneChanging LaneChangingModel() = 0;
+  /** Whether SUMO moves vehicles by its ballistic update now instead of its Euler update: with
+   *  --step-method.ballistic, and where SUMO switches to it by itself: a
+   *  --default.action-step-length given (above 0), or a vehicle type loaded whose
+   *  actionStepLength differs from the step length (SUMO warns "Setting it now"). Once true,
+   *  always true; asked again each step, as SUMO switches when it loads such a type. SUMO keeps
+   *  its Euler update where --step-method.ballistic false is given explicitly with such types,
+   *  which the option's value cannot show: then this says ballistic all the same. */
+  virtual bool BallisticUpdate() = 0;
   /** Applies a scripted event; returns false when its target is not in the network (yet). */
   virtual bool Apply(const ScenarioEvent& e) = 0;
   virtual void Close() = 0;

@@ -144,6 +144,8 @@ class FakeSumoWorld final : public SumoWorld {
   /** ReadControl's answer per vehicle; unset: the vehicle's speed as SUMO's own choice. */
   std::map<std::string, VehicleControl> control;
   LaneChanging lane_changing;
+  /** What BallisticUpdate answers (a test switches it as SUMO would mid-run). */
+  bool ballistic{false};
   double end_time_s{-1.0};
   /** Every command, one line each: "speed ego 12.30", "release ego", "lane ego 1 2.0", ... */
   std::vector<std::string> commands;
@@ -281,6 +283,7 @@ class FakeSumoWorld final : public SumoWorld {
     commands.push_back("sublane " + ego + " " + Fixed(lateral_m));
   }
   LaneChanging LaneChangingModel() override { return lane_changing; }
+  bool BallisticUpdate() override { return ballistic; }
   bool Apply(const ScenarioEvent& e) override {
     if (!Find(e.target)) return false;
     commands.push_back("event " + e.text);

@@ -126,6 +126,19 @@ case $case in
     check "scenes were recorded under --step-method.ballistic" test -n "$(ls "$scenes")"
     check "under --step-method.ballistic no scene has an Euler update step" \
       test -z "$(grep -l '^euler-update-step' "$scenes"/*)"
+    # SUMO switches to its ballistic update by itself where a default action step length is
+    # given, or a vehicle type's actionStepLength differs from the step length.
+    rm -rf "$scenes"
+    run rear_end "$db" --record-scenes "$scenes" --end 2 -- --default.action-step-length 0.5 >/dev/null
+    check "under --default.action-step-length no scene has an Euler update step" \
+      test -n "$(ls "$scenes")" -a -z "$(grep -l '^euler-update-step' "$scenes"/*)"
+    rm -rf "$scenes"
+    printf '<additional>\n  <vType id="slow_reaction" actionStepLength="1.0"/>\n</additional>\n' \
+      > "$work/slow_reaction.add.xml"
+    run rear_end "$db" --record-scenes "$scenes" --end 2 -- \
+      --additional-files "$work/slow_reaction.add.xml" >/dev/null 2>&1
+    check "with a vehicle type's actionStepLength 1.0 at 0.1 s steps no scene has an Euler update step" \
+      test -n "$(ls "$scenes")" -a -z "$(grep -l '^euler-update-step' "$scenes"/*)"
     ;;
   connect)
     db=$work/connect.sqlite; rm -f "$db"

@@ -479,6 +479,9 @@ TEST(SceneStage, ScenesSayWhetherSumoMovesObjectsByItsEulerUpdate) {
   SceneStage ballistic = Stage(w, false);
   EXPECT_DOUBLE_EQ(euler.Run(Observe(w, {"ego"})).scenes.at(0).euler_update_step_s, 0.5);
   EXPECT_DOUBLE_EQ(ballistic.Run(Observe(w, {"ego"})).scenes.at(0).euler_update_step_s, 0.0);
+  // SUMO switched mid-run (a vehicle type with its own action step length was loaded).
+  euler.SwitchToBallistic();
+  EXPECT_DOUBLE_EQ(euler.Run(Observe(w, {"ego"})).scenes.at(0).euler_update_step_s, 0.0);
 }
 
 TEST(SceneStage, EgoCentreAndMathYawComeFromSumosFrontBumperAndNavigationAngle) {
