@@ -1,5 +1,6 @@
 #include "plugin/act/act_stage.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "plugin/act/present_contacts.h"
@@ -67,6 +68,7 @@ void ActStage::Leaving(const Observation& obs, ActOutcome* out) {
       out->warnings.push_back(std::move(w));
     }
     closed_loop_.Leave(e.ego, teleport);
+    standing_contacts_.erase(e.ego);
   }
 }
 
@@ -108,13 +110,25 @@ EgoStep ActStage::Row(const ObjectSnapshot& ego, const Result& r) const {
 void ActStage::CloseTheLoop(double t, const ObjectSnapshot& ego, const Scene& scene,
                             const Result& r, double p, ActOutcome* out) {
   // For a standing ego the closed loop decides on the scene without the objects in contact
-  // with it now (present_contacts.h): re-estimated only where it would act on p (engaged, or p
-  // at the engage threshold) and there is such a contact.
+  // with it now (present_contacts.h), and for a moving one without those of them that stay in
+  // contact since it stood (standing_contacts_): re-estimated only where it would act on p
+  // (engaged, or p at the engage threshold) and there is such a contact.
   std::vector<std::string> contacts;
-  if (estimate_ && ego.state.speed_mps < ClosedLoop::kStandstill &&
-      (closed_loop_.PhaseOf(ego.id) != ClosedLoop::Phase::kIdle ||
-       p >= config_.closed_loop.policy.engage_threshold))
-    contacts = ObjectsInContact(scene);
+  const bool would_act = closed_loop_.PhaseOf(ego.id) != ClosedLoop::Phase::kIdle ||
+                         p >= config_.closed_loop.policy.engage_threshold;
+  std::vector<std::string>& stood = standing_contacts_[ego.id];
+  if (estimate_ && would_act) {
+    const std::vector<std::string> now = ObjectsInContact(scene);
+    if (ego.state.speed_mps < ClosedLoop::kStandstill) {
+      contacts = now;
+    } else {
+      for (const std::string& id : now) {
+        if (std::find(stood.begin(), stood.end(), id) != stood.end()) contacts.push_back(id);
+      }
+    }
+  }
+  stood = contacts;  // a contact that ended, or any while the loop would not act, is forgotten
+  if (stood.empty()) standing_contacts_.erase(ego.id);
   if (contacts.empty()) {
     closed_loop_.Step(t, ego, scene, r, p, &out->actions);
     return;

@@ -6,6 +6,7 @@
 // engagement. Every estimated ego gets its row of the step.
 #include <functional>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -47,7 +48,9 @@ class ActStage {
             ActOutcome* out);
   EgoStep Row(const ObjectSnapshot& ego, const Result& r) const;
   /** The closed loop's step for one ego; where objects are in contact with it now, on the
-   *  scene without them, re-estimated (present_contacts.h). */
+   *  scene without them, re-estimated (present_contacts.h): for a standing ego every such
+   *  object, for a moving one those that were in contact with it already while it stood and
+   *  have stayed so since (standing_contacts_). */
   void CloseTheLoop(double t, const ObjectSnapshot& ego, const Scene& scene, const Result& r,
                     double p, ActOutcome* out);
 
@@ -56,6 +59,11 @@ class ActStage {
   std::function<Result(const Scene&)> estimate_;
   WarningEpisodes episodes_;
   ClosedLoop closed_loop_;
+  /** ego -> the objects the loop decided without while the ego stood, as long as they stay in
+   *  contact: a standing ego handed back for them creeps on and would otherwise be braked for
+   *  the same contact again, and again (a bus with its tail in a junction and a car stopped
+   *  against it: brake and release alternating every 1-2 s for 19 s). */
+  std::unordered_map<std::string, std::vector<std::string>> standing_contacts_;
 };
 
 }  // namespace criticality::plugin

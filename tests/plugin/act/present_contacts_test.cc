@@ -167,6 +167,31 @@ TEST(PresentContacts, AMovingEgoStillBrakesForABodyInContact) {
   ExpectBrakedOnTheFullScene(f);
 }
 
+// A standing ego handed back for a contact creeps on while the body stays in contact: the loop
+// keeps deciding without it, as at standstill, instead of braking for it again (a bus and a car
+// stopped against each other in a junction were braked and released in turn for 19 s). A
+// contact that starts while it moves still brakes it. Fails if the contact of the standstill
+// is kept once the ego moves (then it is braked at 0.4 m/s).
+TEST(PresentContacts, AnEgoCreepingOnFromAContactAtStandstillIsNotBrakedForIt) {
+  LoopFixture f;
+  f.batch.scenes[0].pedestrians.push_back(PersonAt("over", 2.1, 1.1));
+  f.Run(1.0);  // standing: no control taken
+  f.batch.objects[0].state.speed_mps = 0.4;
+  f.batch.scenes[0].ego.state.speed_mps = 0.4;
+  f.Run(2.0);
+  EXPECT_TRUE(f.actions.empty());
+  EXPECT_TRUE(f.world.commands.empty());
+  EXPECT_EQ(f.estimates, 30);  // the scene without the person, once a step, moving or not
+  // The person steps off and back on while the ego moves: a new contact, braked for.
+  f.batch.scenes[0].pedestrians.clear();
+  f.Run(0.1);
+  f.batch.scenes[0].pedestrians.push_back(PersonAt("over", 2.1, 1.1));
+  f.Run(0.5);
+  ASSERT_FALSE(f.actions.empty());
+  EXPECT_EQ(f.actions[0].kind, "brake");
+  EXPECT_EQ(f.actions[0].detail.find("in contact"), std::string::npos) << f.actions[0].detail;
+}
+
 // A threat that is not in contact engages the loop as before, also with a person in contact
 // beside it; the brake row then says what the decision left out. A car 0.5 m clear of the
 // ego's front is no contact: nothing is re-estimated and the row says nothing of contacts.
