@@ -72,15 +72,21 @@ TEST(ObjectLanes, WithoutJunctionShapesTheCorridorJumpsAlongTheChord) {
 // A 12 m bus on the right lane of a two-lane edge running east (E_0 centre y = -1.6, E_1 centre
 // y = +1.6), its front `offset_m` left of E_0's centre and its heading `turn_rad` left of east,
 // as SUMO's continuous lane change places it.
-VehicleOnLane ChangingBus(double offset_m, double turn_rad, Blinker blinker) {
+// A vehicle on lane `index` of edge E (running east), its front 50 m along it.
+VehicleOnLane OnEdgeE(int index, double length_m, double speed_mps, const std::string& vclass) {
   VehicleOnLane v;
-  v.lane = "E_0";
-  v.lane_index = 0;
+  v.lane = "E_" + std::to_string(index);
+  v.lane_index = index;
   v.lane_position_m = 50.0;
-  v.length_m = 12.0;
-  v.speed_mps = 2.0;
+  v.length_m = length_m;
+  v.speed_mps = speed_mps;
   v.route = {"E"};
-  v.vehicle_class = "bus";
+  v.vehicle_class = vclass;
+  return v;
+}
+
+VehicleOnLane ChangingBus(double offset_m, double turn_rad, Blinker blinker) {
+  VehicleOnLane v = OnEdgeE(0, 12.0, 2.0, "bus");
   v.blinker = blinker;
   v.front = Point2{50.0, -1.6 + offset_m};
   v.centre = Pose2{50.0 - 6.0 * std::cos(turn_rad), v.front.y - 6.0 * std::sin(turn_rad), turn_rad};
@@ -162,14 +168,7 @@ TEST(ObjectLanes, InALeftHandNetworkTheNeighboursAndTheOncomingLaneAreMirrored) 
   EXPECT_EQ(counter.Offside("W_1").value_or(""), "E_1");
   EXPECT_FALSE(counter.Offside("E_0").has_value());  // the kerb lane: nothing beyond the road
   // A car by the centre line, E_1: the kerb lane on its left, the oncoming lane on its right.
-  VehicleOnLane car;
-  car.lane = "E_1";
-  car.lane_index = 1;
-  car.lane_position_m = 50.0;
-  car.length_m = 5.0;
-  car.speed_mps = 10.0;
-  car.route = {"E"};
-  car.vehicle_class = "passenger";
+  VehicleOnLane car = OnEdgeE(1, 5.0, 10.0, "passenger");
   car.front = Point2{50.0, 1.6};
   car.centre = Pose2{47.5, 1.6, 0.0};
   const ObjectLanes by_centre = LanesOf(car, SceneConfig{}, 0.1, &left_hand, &counter);
@@ -181,8 +180,7 @@ TEST(ObjectLanes, InALeftHandNetworkTheNeighboursAndTheOncomingLaneAreMirrored) 
   EXPECT_NEAR(by_centre.lanes.left->left.points[0].y, 4.8, 0.01);
   EXPECT_NEAR(by_centre.lanes.right->right.points[0].y, -4.8, 0.01);
   // By the kerb, E_0: E_1 on its right, nothing on its left.
-  car.lane = "E_0";
-  car.lane_index = 0;
+  car = OnEdgeE(0, 5.0, 10.0, "passenger");
   car.front = Point2{50.0, 4.8};
   car.centre = Pose2{47.5, 4.8, 0.0};
   const ObjectLanes by_kerb = LanesOf(car, SceneConfig{}, 0.1, &left_hand, &counter);
