@@ -116,19 +116,24 @@ void ActStage::CloseTheLoop(double t, const ObjectSnapshot& ego, const Scene& sc
   std::vector<std::string> contacts;
   const bool would_act = closed_loop_.PhaseOf(ego.id) != ClosedLoop::Phase::kIdle ||
                          p >= config_.closed_loop.policy.engage_threshold;
-  std::vector<std::string>& stood = standing_contacts_[ego.id];
+  const auto stood = standing_contacts_.find(ego.id);
   if (estimate_ && would_act) {
     const std::vector<std::string> now = ObjectsInContact(scene);
     if (ego.state.speed_mps < ClosedLoop::kStandstill) {
       contacts = now;
-    } else {
+    } else if (stood != standing_contacts_.end()) {
       for (const std::string& id : now) {
-        if (std::find(stood.begin(), stood.end(), id) != stood.end()) contacts.push_back(id);
+        if (std::find(stood->second.begin(), stood->second.end(), id) != stood->second.end())
+          contacts.push_back(id);
       }
     }
   }
-  stood = contacts;  // a contact that ended, or any while the loop would not act, is forgotten
-  if (stood.empty()) standing_contacts_.erase(ego.id);
+  // A contact that ended, or any while the loop would not act, is forgotten.
+  if (!contacts.empty()) {
+    standing_contacts_[ego.id] = contacts;
+  } else if (stood != standing_contacts_.end()) {
+    standing_contacts_.erase(stood);
+  }
   if (contacts.empty()) {
     closed_loop_.Step(t, ego, scene, r, p, &out->actions);
     return;
