@@ -1,6 +1,7 @@
 #include "plugin/network/road_network.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "plugin/network/polyline.h"
 
@@ -9,6 +10,31 @@ namespace criticality::plugin {
 double OnShape(const LaneInfo& lane, double lane_position_m) {
   return lane.length_m > 0.0 ? lane_position_m * PolylineLength(lane.shape) / lane.length_m
                              : lane_position_m;
+}
+
+LanesOffShape LanesWithLengthOffShape(RoadNetwork& network) {
+  LanesOffShape out;
+  double worst_off = 0.0;
+  for (const std::string& edge : network.Edges()) {
+    if (IsInternal(edge)) continue;
+    for (int k = 0; k < network.LaneCount(edge); ++k) {
+      const std::string id = edge + "_" + std::to_string(k);
+      const LaneInfo& lane = network.Lane(id);
+      const double shape = PolylineLength(lane.shape);
+      if (!(shape > 0.0) || !(lane.length_m > 0.0)) continue;
+      const double off = std::fabs(std::log(lane.length_m / shape));
+      if (std::fabs(lane.length_m - shape) <= 1.0 || off <= std::log1p(kLengthOffShapeShare))
+        continue;
+      ++out.lanes;
+      if (off > worst_off) {
+        worst_off = off;
+        out.worst = id;
+        out.worst_length_m = lane.length_m;
+        out.worst_shape_m = shape;
+      }
+    }
+  }
+  return out;
 }
 
 bool Allows(RoadNetwork& network, const std::string& lane, const std::string& vclass) {

@@ -57,6 +57,19 @@ inline bool IsInternal(const std::string& id) { return !id.empty() && id[0] == '
  *  two lengths differ where netconvert smoothed the lane, and SUMO scales one onto the other. */
 double OnShape(const LaneInfo& lane, double lane_position_m);
 
+/** Normal lanes whose SUMO length differs from their drawn shape's by more than
+ *  kLengthOffShapeShare (and 1 m): a network with explicit edge lengths. SUMO moves vehicles
+ *  by the length, so on such a lane they cover a different distance in x/y than their speed
+ *  says, while the estimator predicts in x/y at that speed. `worst`: the lane whose ratio of
+ *  length to shape is farthest from 1. */
+struct LanesOffShape {
+  int lanes{0};
+  std::string worst;
+  double worst_length_m{0.0}, worst_shape_m{0.0};
+};
+constexpr double kLengthOffShapeShare = 0.1;
+LanesOffShape LanesWithLengthOffShape(RoadNetwork& network);
+
 /** Whether `vclass` may use `lane`. */
 bool Allows(RoadNetwork& network, const std::string& lane, const std::string& vclass);
 

@@ -14,6 +14,7 @@
 #include "plugin/act/act_stage.h"
 #include "plugin/estimate/estimate_ahead.h"
 #include "plugin/estimate/estimate_stage.h"
+#include "plugin/network/road_network.h"
 #include "plugin/observe/observe_stage.h"
 #include "plugin/record/record_stage.h"
 #include "plugin/record/results_db.h"
@@ -169,6 +170,7 @@ class CoSimulation {
     // update gives (Scene::euler_update_step_s). SUMO may switch later (SwitchedToBallistic).
     euler_ = !world_->BallisticUpdate();
     const bool euler = euler_;
+    WarnOfLanesOffShape();
     // Whether SUMO moves a vehicle into the next lane within one step (no sublane model,
     // lanechange.duration 0): the headings it reports then (ObjectReader::HeadingOf).
     SceneConfig scenes = o_.scenes;
@@ -245,6 +247,21 @@ class CoSimulation {
   }
 
   bool InFlight() const { return ahead_ && ahead_->busy(); }
+
+  // Lanes whose length differs from their drawn shape (explicit edge lengths): SUMO moves
+  // vehicles by the length, the estimator predicts in the drawn coordinates (a warning, once).
+  void WarnOfLanesOffShape() {
+    const LanesOffShape off = LanesWithLengthOffShape(*world_);
+    if (off.lanes == 0) return;
+    std::fprintf(stderr,
+                 "sumo-criticality: warning: %d lane(s) of the network have a length that differs "
+                 "from their drawn shape by more than %.0f %% (most: '%s', length %.1f m, drawn "
+                 "%.1f m; explicit edge lengths): SUMO moves vehicles along them by the length, "
+                 "the estimator predicts their motion in the drawn coordinates, so its estimates "
+                 "on those lanes are not to be trusted\n",
+                 off.lanes, 100.0 * kLengthOffShapeShare, off.worst.c_str(), off.worst_length_m,
+                 off.worst_shape_m);
+  }
 
   // SUMO switches to its ballistic update when it loads a vehicle type whose action step
   // length differs from the step length: the scenes from then on predict continuous motion.
